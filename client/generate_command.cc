@@ -1,0 +1,100 @@
+// `scallop generate`: runs one bounded-domain sampler locally and prints its
+// points, with optional statistics on stderr.
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "commands.h"
+#include "point_output.h"
+#include "rect_option.h"
+#include "scallop/analysis/point_statistics.h"
+#include "scallop/sampling/sampler.h"
+
+namespace scallop::cli {
+namespace {
+
+struct GenerateArguments {
+  std::string algorithm = "a3";
+  double min_distance = 1.0;
+  std::string domain = "0,0,100,100";
+  bool torus = false;
+  double density = 2.0;
+  uint64_t seed = 1;
+  PointFormat format = PointFormat::kCsv;
+  bool stats = false;
+  int64_t dart_failure_limit = 100000;
+  bool dart_exhaustive = false;
+};
+
+int RunGenerate(const GenerateArguments& arguments) {
+  SamplerOptions options;
+  auto algorithm = ParseAlgorithm(arguments.algorithm);
+  if (!algorithm.ok()) {
+    std::cerr << "scallop generate: " << algorithm.status().message() << '\n';
+    return 2;
+  }
+  auto domain = ParseRect(arguments.domain, "--domain");
+  if (!domain.ok()) {
+    std::cerr << "scallop generate: " << domain.status().message() << '\n';
+    return 2;
+  }
+  options.algorithm = *algorithm;
+  options.domain = {*domain, arguments.torus};
+  options.min_distance = arguments.min_distance;
+  options.density = arguments.density;
+  options.seed = arguments.seed;
+  options.dart_failure_limit = arguments.dart_failure_limit;
+  options.dart_exhaustive = arguments.dart_exhaustive;
+
+  const auto start = std::chrono::steady_clock::now();
+  auto points = Sample(options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!points.ok()) {
+    std::cerr << "scallop generate: " << points.status().message() << '\n';
+    return 2;
+  }
+  WritePoints(std::cout, arguments.format, *points, {}, options.domain.rect,
+              {.seam_spacing = 0.0, .dot_radius = options.min_distance / 2});
+  if (arguments.stats) {
+    const auto rho = NormalisedRadius(static_cast<int64_t>(points->size()),
+                                        options.domain.rect.Area(), options.min_distance);
+    std::cerr << std::setprecision(6) << "algorithm " << AlgorithmName(options.algorithm)
+              << "\ncount " << points->size() << "\nrho " << (rho.ok() ? *rho : NAN) << "\nseconds " << seconds
+              << "\npoints_per_second " << static_cast<double>(points->size()) / seconds << '\n';
+  }
+  return 0;
+}
+
+}  // namespace
+
+CommandRunner RegisterGenerate(CLI::App& app) {
+  auto arguments = std::make_shared<GenerateArguments>();
+  CLI::App* command = app.add_subcommand("generate", "Sample a bounded domain with one algorithm");
+  command->add_option("--algorithm", arguments->algorithm,
+                      "a1, a2, a3, dart, best-candidate or bridson")
+      ->capture_default_str();
+  command->add_option("--min-distance", arguments->min_distance, "Minimum distance d between points")
+      ->capture_default_str();
+  command->add_option("--domain", arguments->domain, "Rectangle X0,Y0,X1,Y1 (half-open)")
+      ->capture_default_str();
+  command->add_flag("--torus", arguments->torus, "Wrap the domain's opposite edges");
+  command->add_option("--density", arguments->density, "r'/2r in (1, 2] for a1 and a2")
+      ->capture_default_str();
+  command->add_option("--seed", arguments->seed, "Random seed")->capture_default_str();
+  std::map<std::string, PointFormat> formats(PointFormatNames().begin(), PointFormatNames().end());
+  command->add_option("--format", arguments->format, "csv, json, svg or none")
+      ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case))
+      ->capture_default_str();
+  command->add_flag("--stats", arguments->stats,
+                    "Print count, rho, seconds and points per second to stderr");
+  command->add_option("--dart-failure-limit", arguments->dart_failure_limit,
+                      "dart: stop after this many misses in a row")
+      ->capture_default_str();
+  command->add_flag("--dart-exhaustive", arguments->dart_exhaustive,
+                    "dart: run until no spot is left (maximal)");
+  return [arguments] { return RunGenerate(*arguments); };
+}
+
+}  // namespace scallop::cli

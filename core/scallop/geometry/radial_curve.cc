@@ -1,0 +1,103 @@
+// RadialCurve: construction, the closed-form area antiderivative and curve crossings.
+// Kept apart from the header so the hot DistanceAlong stays inline while the
+// transcendental pieces live here.
+#include "scallop/geometry/radial_curve.h"
+
+#include <cmath>
+
+namespace scallop {
+
+RadialCurve RadialCurve::Arc(Vec2 centre, double radius, int sign) {
+  RadialCurve curve;
+  curve.kind_ = Kind::kArc;
+  curve.vector_ = centre;
+  curve.scalar_ = radius;
+  curve.sign_ = static_cast<int8_t>(sign < 0 ? -1 : 1);
+  curve.centre_distance_ = Length(centre);
+  // atan2(0, 0) = 0: for a circle centred on the apex gamma is arbitrary and cancels.
+  curve.polar_angle_ = std::atan2(centre.y, centre.x);
+  return curve;
+}
+
+RadialCurve RadialCurve::Line(Vec2 unit_normal, double offset) {
+  RadialCurve curve;
+  curve.kind_ = Kind::kLine;
+  if (offset < 0.0) {
+    unit_normal = -1.0 * unit_normal;
+    offset = -offset;
+  }
+  curve.vector_ = unit_normal;
+  curve.scalar_ = offset;
+  curve.polar_angle_ = std::atan2(unit_normal.y, unit_normal.x);
+  return curve;
+}
+
+double RadialCurve::HalfSquareIntegral(double angle) const {
+  const double u = angle - polar_angle_;
+  if (kind_ == Kind::kLine) return 0.5 * scalar_ * scalar_ * std::tan(u);
+  const double d = centre_distance_;
+  const double radius_squared = scalar_ * scalar_;
+  double integral = radius_squared * u + 0.5 * d * d * std::sin(2.0 * u);
+  if (scalar_ > 0.0) {
+    // w sqrt(R^2 - w^2) + R^2 asin(w / R) written as w S + R^2 atan2(w, S) with S = sqrt((R - w)
+    // (R + w)): near the tangent rays (|w| -> R) asin and R^2 - w^2 each lose half the digits,
+    // while this form is well conditioned in both w and S (its partial derivatives vanish there).
+    double w = d * std::sin(u);
+    if (w > scalar_) w = scalar_;  // rounding can push |w| a hair past R at tangent rays
+    if (w < -scalar_) w = -scalar_;
+    const double root = std::sqrt((scalar_ - w) * (scalar_ + w));
+    integral += sign_ * (w * root + radius_squared * std::atan2(w, root));
+  }
+  return 0.5 * integral;
+}
+
+namespace {
+
+Vec2 Perpendicular(Vec2 v) { return {-v.y, v.x}; }
+
+int CircleCircle(Vec2 c1, double r1, Vec2 c2, double r2, Vec2 points[2]) {
+  const Vec2 delta = c2 - c1;
+  const double distance_squared = SquaredLength(delta);
+  if (distance_squared == 0.0) return 0;
+  const double distance = std::sqrt(distance_squared);
+  const double along = (r1 * r1 - r2 * r2 + distance_squared) / (2.0 * distance);
+  const double half_chord_squared = r1 * r1 - along * along;
+  if (!(half_chord_squared > 0.0)) return 0;
+  const Vec2 unit = (1.0 / distance) * delta;
+  const Vec2 base = c1 + along * unit;
+  const Vec2 offset = std::sqrt(half_chord_squared) * Perpendicular(unit);
+  points[0] = base - offset;
+  points[1] = base + offset;
+  return 2;
+}
+
+int CircleLine(Vec2 centre, double radius, Vec2 normal, double offset, Vec2 points[2]) {
+  const double signed_distance = Dot(normal, centre) - offset;
+  const double half_chord_squared = radius * radius - signed_distance * signed_distance;
+  if (!(half_chord_squared > 0.0)) return 0;
+  const Vec2 foot = centre - signed_distance * normal;
+  const Vec2 along = std::sqrt(half_chord_squared) * Perpendicular(normal);
+  points[0] = foot - along;
+  points[1] = foot + along;
+  return 2;
+}
+
+int LineLine(Vec2 n1, double c1, Vec2 n2, double c2, Vec2 points[2]) {
+  const double determinant = Cross(n1, n2);
+  if (determinant == 0.0) return 0;
+  points[0] = {(c1 * n2.y - c2 * n1.y) / determinant, (n1.x * c2 - n2.x * c1) / determinant};
+  return 1;
+}
+
+}  // namespace
+
+int CurveCrossings(const RadialCurve& a, const RadialCurve& b, Vec2 points[2]) {
+  if (a.is_arc() && b.is_arc()) {
+    return CircleCircle(a.centre(), a.radius(), b.centre(), b.radius(), points);
+  }
+  if (a.is_arc()) return CircleLine(a.centre(), a.radius(), b.normal(), b.offset(), points);
+  if (b.is_arc()) return CircleLine(b.centre(), b.radius(), a.normal(), a.offset(), points);
+  return LineLine(a.normal(), a.offset(), b.normal(), b.offset(), points);
+}
+
+}  // namespace scallop

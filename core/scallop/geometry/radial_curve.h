@@ -1,0 +1,87 @@
+// RadialCurve: a boundary of a scalloped sector, seen from the sector's apex as a
+// distance rho(t) along the ray at angle t. Either an arc of a circle (Dunbar &
+// Humphreys 2006) or a straight line, which clips neighbourhoods to rectangles.
+#pragma once
+
+#include <cstdint>
+
+#include "scallop/geometry/vec2.h"
+
+namespace scallop {
+
+class RadialCurve {
+ public:
+  enum class Kind : uint8_t { kArc, kLine };
+
+  // The half of the circle |x - centre| = radius met along rays from the apex (the origin of
+  // `centre`): sign +1 the farther crossing, -1 the nearer one, so that
+  //   rho(t) = d cos(t - gamma) + sign * sqrt(radius^2 - (d sin(t - gamma))^2)
+  // with (d, gamma) the polar coordinates of `centre`. A circle centred on the apex is an arc with
+  // sign +1 and rho = radius. Cost: one atan2 and one hypot.
+  // REQUIRES: radius >= 0, sign in {-1, +1}, finite inputs.
+  static RadialCurve Arc(Vec2 centre, double radius, int sign);
+
+  // The line {x : Dot(unit_normal, x) = offset}, x relative to the apex:
+  //   rho(t) = offset / cos(t - phi), phi the angle of unit_normal,
+  // meaningful where positive. Stored normalised to offset >= 0 (negating both when offset < 0
+  // describes the same line), so equal lines compare equal. Cost: one atan2.
+  // REQUIRES: |unit_normal| = 1 to rounding, finite inputs.
+  static RadialCurve Line(Vec2 unit_normal, double offset);
+
+  Kind kind() const { return kind_; }
+  bool is_arc() const { return kind_ == Kind::kArc; }
+  // Arc: the circle's centre (apex-relative) and radius; sign in {-1, +1}.
+  Vec2 centre() const { return vector_; }
+  double radius() const { return scalar_; }
+  int sign() const { return sign_; }
+  // Line: the normalised unit normal and offset >= 0.
+  Vec2 normal() const { return vector_; }
+  double offset() const { return scalar_; }
+
+  // rho along the ray at `angle`. O(1): one sincos and one sqrt (or a division).
+  // Off the arc's angular range (rays that miss the circle) the square root is clamped at 0;
+  // on rays parallel to a line the result is +-inf. Error: a few ulps of max(d, radius) for
+  // arcs, away from tangent rays where the square root amplifies rounding.
+  double DistanceAt(double angle) const { return DistanceAlong(UnitAt(angle)); }
+
+  // rho along the ray with unit direction `direction`; as DistanceAt but no trigonometry.
+  double DistanceAlong(Vec2 direction) const {
+    if (kind_ == Kind::kLine) return scalar_ / Dot(vector_, direction);
+    const double along = Dot(vector_, direction);
+    const double across = Cross(vector_, direction);  // = d sin(t - gamma)
+    // (R - w)(R + w) rather than R^2 - w^2: no cancellation near the tangent rays.
+    const double discriminant = (scalar_ - across) * (scalar_ + across);
+    return along + sign_ * std::sqrt(discriminant > 0.0 ? discriminant : 0.0);
+  }
+
+  // Closed-form antiderivative of DistanceAt(t)^2 / 2, so the area of a sector over [a, b] is
+  // [F_far]_a^b - [F_near]_a^b. With u = t - gamma, w = d sin u:
+  //   Arc:  F = (R^2 u + (d^2 / 2) sin 2u + sign (w sqrt(R^2 - w^2) + R^2 asin(w / R))) / 2
+  //   Line: F = (c^2 / 2) tan(t - phi)
+  // Continuous on any angular range where the curve is defined (arc: |w| <= R; line: cos != 0).
+  // Cost: one sin, one sqrt and one atan2 (arc) or one tan (line). Absolute error a few ulps of
+  // max(d, R)^2 * (1 + |u|) for arcs, also at the tangent rays (evaluated in a form that stays
+  // well conditioned there); differences of nearby values lose relative accuracy.
+  double HalfSquareIntegral(double angle) const;
+
+  friend bool operator==(const RadialCurve& a, const RadialCurve& b) {
+    return a.kind_ == b.kind_ && a.sign_ == b.sign_ && a.vector_ == b.vector_ &&
+           a.scalar_ == b.scalar_;
+  }
+
+ private:
+  Vec2 vector_;                   // arc: centre; line: unit normal
+  double scalar_ = 0.0;           // arc: radius; line: offset >= 0
+  double polar_angle_ = 0.0;      // arc: gamma; line: phi
+  double centre_distance_ = 0.0;  // arc: d = |centre|
+  Kind kind_ = Kind::kArc;
+  int8_t sign_ = 1;
+};
+
+// Points (apex-relative) where the full circles / lines underlying `a` and `b` cross, ignoring
+// which half of a circle each arc uses. Writes up to two points to `points` and returns how many.
+// Tangent, coincident, concentric and parallel pairs give 0: touching curves need no split.
+// O(1), one sqrt. Error: a few ulps of the operands' scale, more near tangency.
+int CurveCrossings(const RadialCurve& a, const RadialCurve& b, Vec2 points[2]);
+
+}  // namespace scallop

@@ -1,0 +1,45 @@
+// ScallopedSector: the points seen from an apex at angles in [angle_begin, angle_end] and
+// distances between a near and a far RadialCurve (Dunbar & Humphreys 2006), with its closed-form
+// area, the inverse of the cumulative area and uniform sampling.
+#pragma once
+
+#include "scallop/geometry/radial_curve.h"
+#include "scallop/geometry/vec2.h"
+
+namespace scallop {
+
+// Invariants (REQUIRES for every method): angle_begin < angle_end, both in [-pi, pi];
+// 0 <= near(t) <= far(t) on the range; near and far do not cross inside it; each curve is defined
+// on the whole range (arcs: rays meet the circle; lines: rho > 0). All points are apex-relative.
+struct ScallopedSector {
+  double angle_begin = 0.0;
+  double angle_end = 0.0;
+  RadialCurve near;
+  RadialCurve far;
+
+  // A(alpha) = integral over [angle_begin, alpha] of (far^2 - near^2) / 2, closed form from
+  // RadialCurve::HalfSquareIntegral. O(1): four antiderivative evaluations. Absolute error a few
+  // ulps of (scale^2 * angular width), scale the largest centre distance or radius involved.
+  double AreaUpTo(double angle) const;
+  // A(angle_end). Same cost and error as AreaUpTo.
+  double Area() const { return AreaUpTo(angle_end); }
+
+  // A^-1: the angle in [angle_begin, angle_end] whose AreaUpTo is `area` (clamped to
+  // [0, Area()]). Safeguarded Newton (dA/dt = (far^2 - near^2) / 2) inside a bisection bracket,
+  // iterated until the step or the bracket stops shrinking, so the result is as accurate as
+  // AreaUpTo's rounding allows (typically ~1e-15 relative to the width). Usually 4-6 iterations,
+  // capped at 200. REQUIRES: Area() > 0.
+  double AngleAtArea(double area) const;
+
+  // A uniformly distributed point of the sector (apex-relative) from u1, u2 in [0, 1):
+  // theta = A^-1(u2 A), distance = sqrt(g^2 + u1 (h^2 - g^2)). Cost: one AngleAtArea.
+  Vec2 Sample(double u1, double u2) const;
+
+  // True when `relative` lies in the closed sector. Cost: one atan2, two DistanceAlong.
+  bool Contains(Vec2 relative) const;
+  // As Contains, given the point's angle (from atan2), unit direction and distance, so a region
+  // can share the atan2 among its sectors. Handles the angle pi = -pi seam.
+  bool ContainsPolar(double angle, Vec2 direction, double distance) const;
+};
+
+}  // namespace scallop

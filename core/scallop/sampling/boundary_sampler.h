@@ -1,0 +1,20 @@
+// A3, boundary sampling (Dunbar & Humphreys 2006, section 4): new points go
+// only on the circle of radius d around an earlier point, on the part of it
+// (its available boundary) that no other point's disk covers. O(N).
+#pragma once
+
+#include <vector>
+
+#include "scallop/random/rng.h"
+#include "scallop/sampling/sampling_problem.h"
+
+namespace scallop {
+
+// Samples the domain until every point's available boundary is empty; the
+// result is maximal for SpacingFor(d, ...) and every pair is at least d apart
+// in double precision. Points come back in generation order (fixed points
+// excluded). REQUIRES: a problem that ValidateSamplerOptions accepted.
+// Cost: O(N) time, about 50 bytes of grid per point.
+std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng);
+
+}  // namespace scallop

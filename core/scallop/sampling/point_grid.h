@@ -1,0 +1,102 @@
+// PointGrid: the uniform grid every sampler uses to find the points near a
+// spot in O(1). Cells are a little under d / sqrt(2) wide, so a set whose
+// points are at least d apart has at most one point per cell.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "scallop/geometry/rect.h"
+#include "scallop/geometry/vec2.h"
+
+namespace scallop {
+
+class PointGrid {
+ public:
+  // Covers `area` grown by `margin` on every side (margin 0 on a torus, whose
+  // cells wrap around). REQUIRES: min_distance > 0; on a torus every side of
+  // `area` is at least 8 * min_distance, so a neighbour query of radius up to
+  // 4 d sees each point once, at its image nearest to the query spot.
+  PointGrid(const Rect& area, bool torus, double min_distance, double margin = 0.0);
+
+  // Stores point `index` at `p`. REQUIRES: p within the covered area and no
+  // point closer than min_distance already stored (so its cell is free).
+  void Insert(int32_t index, Vec2 p) {
+    Cell& cell = cells_[CellIndex(ColumnOf(p.x), RowOf(p.y))];
+    cell.position = p;
+    cell.index = index;
+  }
+
+  // Calls visit(index, position) for every stored point that may lie within
+  // `radius` of `p` (a superset: the caller measures). On a torus `position`
+  // is the image of the point nearest to `p`. O((radius / cell)^2).
+  template <typename Visit>
+  void ForEachNear(Vec2 p, double radius, Visit&& visit) const {
+    const int64_t c0 = ColumnOf(p.x - radius), c1 = ColumnOf(p.x + radius);
+    const int64_t r0 = RowOf(p.y - radius), r1 = RowOf(p.y + radius);
+    if (!torus_) {
+      for (int64_t r = std::max<int64_t>(r0, 0); r <= std::min<int64_t>(r1, rows_ - 1); ++r) {
+        const Cell* row = &cells_[static_cast<size_t>(r * columns_)];
+        for (int64_t c = std::max<int64_t>(c0, 0); c <= std::min<int64_t>(c1, columns_ - 1); ++c) {
+          if (row[c].index >= 0) visit(row[c].index, row[c].position);
+        }
+      }
+      return;
+    }
+    // On a torus visit each distinct cell once and shift its point to the image nearest p.
+    const int64_t row_count = std::min<int64_t>(r1 - r0 + 1, rows_);
+    const int64_t column_count = std::min<int64_t>(c1 - c0 + 1, columns_);
+    for (int64_t dr = 0; dr < row_count; ++dr) {
+      const int64_t r = Wrap(r0 + dr, rows_);
+      for (int64_t dc = 0; dc < column_count; ++dc) {
+        const Cell& cell = cells_[CellIndex(Wrap(c0 + dc, columns_), r)];
+        if (cell.index >= 0) visit(cell.index, NearestImage(p, cell.position));
+      }
+    }
+  }
+
+  // The image of q (under the torus's translations) nearest to p; q itself
+  // on a rectangle.
+  Vec2 NearestImage(Vec2 p, Vec2 q) const {
+    if (!torus_) return q;
+    return {q.x + width_ * std::round((p.x - q.x) / width_),
+            q.y + height_ * std::round((p.y - q.y) / height_)};
+  }
+
+  // Wraps p into the half-open torus rectangle; p itself on a rectangle.
+  Vec2 WrapIntoDomain(Vec2 p) const;
+
+  size_t cell_count() const { return cells_.size(); }
+
+ private:
+  struct Cell {
+    Vec2 position;
+    int32_t index = -1;
+  };
+
+  int64_t ColumnOf(double x) const {
+    return static_cast<int64_t>(std::floor((x - origin_.x) / cell_width_));
+  }
+  int64_t RowOf(double y) const {
+    return static_cast<int64_t>(std::floor((y - origin_.y) / cell_height_));
+  }
+  static int64_t Wrap(int64_t i, int64_t n) { return ((i % n) + n) % n; }
+  size_t CellIndex(int64_t column, int64_t row) const {
+    if (torus_) {
+      column = Wrap(column, columns_);
+      row = Wrap(row, rows_);
+    }
+    return static_cast<size_t>(row * columns_ + column);
+  }
+
+  Vec2 origin_;
+  bool torus_;
+  double width_, height_;
+  double cell_width_, cell_height_;
+  int64_t columns_, rows_;
+  std::vector<Cell> cells_;
+};
+
+}  // namespace scallop

@@ -1,0 +1,169 @@
+// A1 and A2 implementation. Every point p keeps its available neighbourhood
+//   N_p = D(p, r') - U_{q < p} D(q, r') - U_{q >= p} D(q, s)
+// (s = d plus the rounding margin of spacing.h), clipped to the domain. A new
+// point x gets N_x = annulus(s, r') minus the r'-disks of all earlier points,
+// and x's s-disk is cut from the neighbourhoods it reaches. The union of the
+// neighbourhoods is always the available area within r' of a point, so
+// sampling it uniformly (A1) is dart throwing, run until no spot is left.
+#include "scallop/sampling/scalloped_sampler.h"
+
+#include <cmath>
+
+#include "scallop/geometry/scalloped_region.h"
+#include "scallop/sampling/area_sum_tree.h"
+#include "scallop/sampling/point_grid.h"
+#include "scallop/sampling/spacing.h"
+
+namespace scallop {
+namespace {
+
+// Draws from one neighbourhood that fail the double-precision spacing check
+// (possible only within rounding of its edge) before the neighbourhood is
+// given up as a rounding-sized sliver.
+constexpr int kMaxRejectedDraws = 16;
+
+class ScallopedSampler {
+ public:
+  ScallopedSampler(const SamplingProblem& problem, CandidateChoice choice, Rng& rng)
+      : problem_(problem),
+        choice_(choice),
+        rng_(rng),
+        outer_radius_(problem.density * problem.min_distance),
+        spacing_(SpacingFor(problem.min_distance,
+                            MaxAbsCoordinate(problem, problem.domain.torus ? 0.0 : 2 * outer_radius_))),
+        d_squared_(problem.min_distance * problem.min_distance),
+        grid_(problem.domain.rect, problem.domain.torus, problem.min_distance,
+              problem.domain.torus ? 0.0 : 2 * problem.min_distance + spacing_) {}
+
+  std::vector<Vec2> Run() {
+    for (const Vec2& p : problem_.fixed_points) AddPoint(p);
+    fixed_count_ = points_.size();
+    if (NeedsSeedPoint(problem_, outer_radius_)) {
+      const Rect& r = problem_.domain.rect;
+      const double x = rng_.Uniform(r.x0, r.x1);
+      AddPoint({x, rng_.Uniform(r.y0, r.y1)});
+    }
+    for (;;) {
+      const int32_t chosen = ChooseCandidate();
+      if (chosen < 0) break;
+      DrawFrom(chosen);
+    }
+    points_.erase(points_.begin(), points_.begin() + static_cast<std::ptrdiff_t>(fixed_count_));
+    return std::move(points_);
+  }
+
+ private:
+  // The index of a point with a non-empty neighbourhood, or -1 when none is left.
+  int32_t ChooseCandidate() {
+    if (choice_ == CandidateChoice::kByArea) {
+      if (areas_.Total() <= 0.0) return -1;
+      return static_cast<int32_t>(areas_.Pick(rng_.Uniform()));
+    }
+    // A2: uniform over the candidates; emptied ones are dropped when met,
+    // which keeps the choice uniform over the non-empty ones.
+    while (!candidates_.empty()) {
+      const size_t pick = rng_.Below(candidates_.size());
+      const int32_t index = candidates_[pick];
+      if (!neighbourhoods_[static_cast<size_t>(index)].empty()) return index;
+      candidates_[pick] = candidates_.back();
+      candidates_.pop_back();
+    }
+    return -1;
+  }
+
+  // Draws one point from N_index and adds it, or gives up a sliver.
+  void DrawFrom(int32_t index) {
+    ScallopedRegion& region = neighbourhoods_[static_cast<size_t>(index)];
+    for (int attempt = 0; attempt < kMaxRejectedDraws; ++attempt) {
+      const double u0 = rng_.Uniform(), u1 = rng_.Uniform(), u2 = rng_.Uniform();
+      const Vec2 x = grid_.WrapIntoDomain(region.Sample(u0, u1, u2));
+      if (Fits(x)) {
+        AddPoint(x);
+        return;
+      }
+    }
+    SetNeighbourhood(index, ScallopedRegion());
+  }
+
+  // The contract's own test, in doubles, against every point near x.
+  bool Fits(Vec2 x) const {
+    if (!problem_.domain.torus && !problem_.domain.rect.Contains(x)) return false;
+    bool fits = true;
+    grid_.ForEachNear(x, problem_.min_distance, [&](int32_t, Vec2 q) {
+      fits = fits && SquaredDistance(q, x) >= d_squared_;
+    });
+    return fits;
+  }
+
+  void AddPoint(Vec2 x) {
+    const auto index = static_cast<int32_t>(points_.size());
+    points_.push_back(x);
+    grid_.Insert(index, x);
+
+    ScallopedRegion region = ScallopedRegion::Annulus(x, spacing_, outer_radius_);
+    if (!problem_.domain.torus) ClipToDomain(region);
+    // Earlier points own what lies within r' of them; x's s-disk leaves their
+    // neighbourhoods. Images are taken near x, then moved to each point's side.
+    grid_.ForEachNear(x, 2 * outer_radius_, [&](int32_t other, Vec2 q) {
+      if (other == index) return;
+      const double distance_squared = SquaredDistance(q, x);
+      if (!region.empty() && distance_squared < 4 * outer_radius_ * outer_radius_) {
+        region.SubtractDisk(q, outer_radius_);
+      }
+      ScallopedRegion& theirs = neighbourhoods_[static_cast<size_t>(other)];
+      const double reach = outer_radius_ + spacing_;
+      if (!theirs.empty() && distance_squared < reach * reach) {
+        const Vec2 x_near_them = x + (points_[static_cast<size_t>(other)] - q);
+        theirs.SubtractDisk(x_near_them, spacing_);
+        SetNeighbourhoodArea(other);
+      }
+    });
+    neighbourhoods_.push_back(std::move(region));
+    if (choice_ == CandidateChoice::kUniform) candidates_.push_back(index);
+    SetNeighbourhoodArea(index);
+  }
+
+  void ClipToDomain(ScallopedRegion& region) const {
+    const Rect& r = problem_.domain.rect;
+    region.IntersectHalfPlane({1, 0}, r.x1);
+    region.IntersectHalfPlane({-1, 0}, -r.x0);
+    region.IntersectHalfPlane({0, 1}, r.y1);
+    region.IntersectHalfPlane({0, -1}, -r.y0);
+  }
+
+  void SetNeighbourhood(int32_t index, ScallopedRegion region) {
+    neighbourhoods_[static_cast<size_t>(index)] = std::move(region);
+    SetNeighbourhoodArea(index);
+  }
+
+  void SetNeighbourhoodArea(int32_t index) {
+    ScallopedRegion& region = neighbourhoods_[static_cast<size_t>(index)];
+    // An emptied neighbourhood gives its buffers back: only the frontier holds memory.
+    if (region.empty() && region.sectors().capacity() > 0) region = ScallopedRegion();
+    if (choice_ == CandidateChoice::kByArea) {
+      areas_.Set(static_cast<size_t>(index), region.Area());
+    }
+  }
+
+  const SamplingProblem& problem_;
+  const CandidateChoice choice_;
+  Rng& rng_;
+  const double outer_radius_;  // r'
+  const double spacing_;       // s: d plus the rounding margin
+  const double d_squared_;
+  PointGrid grid_;
+  std::vector<Vec2> points_;
+  size_t fixed_count_ = 0;
+  std::vector<ScallopedRegion> neighbourhoods_;
+  AreaSumTree areas_;             // A1
+  std::vector<int32_t> candidates_;  // A2
+};
+
+}  // namespace
+
+std::vector<Vec2> SampleScalloped(const SamplingProblem& problem, CandidateChoice choice,
+                                  Rng& rng) {
+  return ScallopedSampler(problem, choice, rng).Run();
+}
+
+}  // namespace scallop

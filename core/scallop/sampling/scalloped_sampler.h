@@ -1,0 +1,26 @@
+// A1 and A2: dart throwing emulated with scalloped sectors (Dunbar &
+// Humphreys 2006, section 3). Each point keeps its available neighbourhood,
+// the part of the annulus d..r' around it that no disk covers; new points are
+// drawn uniformly from a neighbourhood.
+#pragma once
+
+#include <vector>
+
+#include "scallop/random/rng.h"
+#include "scallop/sampling/sampling_problem.h"
+
+namespace scallop {
+
+enum class CandidateChoice {
+  kByArea,   // A1: neighbourhood chosen with probability proportional to its area
+  kUniform,  // A2: neighbourhood chosen uniformly
+};
+
+// Samples until no neighbourhood is left. With density 2 (r' = 2d) and
+// kByArea the result is distributed as dart throwing run to exhaustion.
+// REQUIRES: a problem that ValidateSamplerOptions accepted.
+// Cost: A1 O(N log N) (a sum tree over areas), A2 O(N).
+std::vector<Vec2> SampleScalloped(const SamplingProblem& problem, CandidateChoice choice,
+                                  Rng& rng);
+
+}  // namespace scallop

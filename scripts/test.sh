@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds everything with warnings as errors, and runs
+# every test twice: in a Release build and under AddressSanitizer +
+# UndefinedBehaviorSanitizer. Run from anywhere, as root on a fresh Debian 12.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install-deps.sh
+
+jobs=2
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSCALLOP_WERROR=ON
+cmake --build build -j"$jobs"
+ctest --test-dir build --output-on-failure -j"$jobs"
+
+# The sanitizer build skips the benchmarks: they test speed, not correctness.
+cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSCALLOP_WERROR=ON \
+  -DSCALLOP_SANITIZE=ON -DSCALLOP_BUILD_BENCH=OFF
+cmake --build build-sanitize -j"$jobs"
+ctest --test-dir build-sanitize --output-on-failure -j"$jobs"

@@ -1,0 +1,449 @@
+// Tests for ScallopedRegion set operations against a point-membership oracle: random annuli and
+// random sequences of disk subtractions / intersections and half-plane clips, then membership,
+// area, disjointness and sampling checks; plus the degenerate cases named in the design.
+#include "scallop/geometry/scalloped_region.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <vector>
+
+#include "scallop/random/rng.h"
+
+namespace scallop {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+enum class OperationKind { kSubtractDisk, kIntersectDisk, kHalfPlane };
+
+struct Operation {
+  OperationKind kind;
+  Vec2 point;  // disk centre, or half-plane unit normal
+  double scalar;  // disk radius, or half-plane offset
+};
+
+// The brute-force description of the region: the annulus and the operations applied in order.
+struct Oracle {
+  Vec2 apex;
+  double inner;
+  double outer;
+  std::vector<Operation> operations;
+
+  bool Contains(Vec2 p) const {
+    const double r = Length(p - apex);
+    if (r < inner || r > outer) return false;
+    for (const Operation& operation : operations) {
+      switch (operation.kind) {
+        case OperationKind::kSubtractDisk:
+          if (Length(p - operation.point) <= operation.scalar) return false;
+          break;
+        case OperationKind::kIntersectDisk:
+          if (Length(p - operation.point) > operation.scalar) return false;
+          break;
+        case OperationKind::kHalfPlane:
+          if (Dot(operation.point, p) > operation.scalar) return false;
+          break;
+      }
+    }
+    return true;
+  }
+
+  // Distance from p to the nearest boundary of any set involved (an upper bound on how far a
+  // correct implementation may disagree with the oracle because of rounding).
+  double BoundaryDistance(Vec2 p) const {
+    const double r = Length(p - apex);
+    double nearest = std::min(std::fabs(r - inner), std::fabs(r - outer));
+    for (const Operation& operation : operations) {
+      if (operation.kind == OperationKind::kHalfPlane) {
+        nearest = std::min(nearest, std::fabs(Dot(operation.point, p) - operation.scalar));
+      } else {
+        nearest = std::min(nearest, std::fabs(Length(p - operation.point) - operation.scalar));
+      }
+    }
+    return nearest;
+  }
+
+  void ApplyTo(ScallopedRegion& region) const {
+    for (const Operation& operation : operations) {
+      switch (operation.kind) {
+        case OperationKind::kSubtractDisk:
+          region.SubtractDisk(operation.point, operation.scalar);
+          break;
+        case OperationKind::kIntersectDisk:
+          region.IntersectDisk(operation.point, operation.scalar);
+          break;
+        case OperationKind::kHalfPlane:
+          region.IntersectHalfPlane(operation.point, operation.scalar);
+          break;
+      }
+    }
+  }
+};
+
+// Random annulus and operations, biased towards the degenerate configurations: centres on the
+// apex, circles tangent to the annulus, disks through the apex, lines through the apex.
+Oracle RandomOracle(Rng& rng) {
+  Oracle oracle;
+  oracle.apex = {rng.Uniform(-100.0, 100.0), rng.Uniform(-100.0, 100.0)};
+  oracle.outer = rng.Uniform(0.5, 4.0);
+  oracle.inner = oracle.outer * rng.Uniform(0.1, 0.8);
+  const int count = 1 + static_cast<int>(rng.Below(15));
+  for (int i = 0; i < count; ++i) {
+    const uint64_t choice = rng.Below(20);
+    const Vec2 direction = UnitAt(rng.Uniform(-kPi, kPi));
+    double radius = oracle.outer * rng.Uniform(0.1, 1.5);
+    double distance = oracle.outer * rng.Uniform(0.0, 2.0);
+    switch (rng.Below(6)) {
+      case 0:
+        distance = 0.0;  // concentric
+        break;
+      case 1:
+        distance = oracle.outer + radius;  // externally tangent to the outer circle
+        break;
+      case 2:
+        distance = std::fabs(oracle.outer - radius);  // internally tangent to the outer circle
+        break;
+      case 3:
+        distance = radius;  // circle through the apex
+        break;
+      case 4:
+        distance = oracle.inner + radius;  // tangent to the inner circle
+        break;
+      default:
+        break;
+    }
+    const Vec2 centre = oracle.apex + distance * direction;
+    if (choice < 14) {
+      oracle.operations.push_back({OperationKind::kSubtractDisk, centre, radius});
+    } else if (choice < 17) {
+      radius = oracle.outer * rng.Uniform(0.3, 2.5);
+      oracle.operations.push_back({OperationKind::kIntersectDisk, centre, radius});
+    } else {
+      const double offset = rng.Below(4) == 0 ? 0.0 : oracle.outer * rng.Uniform(-1.2, 1.2);
+      oracle.operations.push_back(
+          {OperationKind::kHalfPlane, direction, Dot(direction, oracle.apex) + offset});
+    }
+  }
+  return oracle;
+}
+
+// Every sector: ordered angles within [-pi, pi], 0 <= near <= far on a scan of its range.
+void ExpectSectorsWellFormed(const ScallopedRegion& region, uint64_t seed) {
+  for (const ScallopedSector& sector : region.sectors()) {
+    ASSERT_LT(sector.angle_begin, sector.angle_end) << "seed " << seed;
+    ASSERT_GE(sector.angle_begin, -kPi) << "seed " << seed;
+    ASSERT_LE(sector.angle_end, kPi) << "seed " << seed;
+    for (int i = 0; i <= 16; ++i) {
+      const double angle =
+          sector.angle_begin + (sector.angle_end - sector.angle_begin) * i / 16.0;
+      const double g = sector.near.DistanceAt(angle);
+      const double h = sector.far.DistanceAt(angle);
+      ASSERT_GE(g, -1e-9) << "seed " << seed;
+      ASSERT_LE(g, h + 1e-7) << "seed " << seed << " angle " << angle;
+    }
+  }
+}
+
+TEST(ScallopedRegionTest, MatchesMembershipOracle) {
+  constexpr int kProbes = 3000;
+  int nonempty_cases = 0;
+  for (uint64_t seed = 1; seed <= 1500; ++seed) {
+    Rng rng(seed);
+    const Oracle oracle = RandomOracle(rng);
+    ScallopedRegion region = ScallopedRegion::Annulus(oracle.apex, oracle.inner, oracle.outer);
+    oracle.ApplyTo(region);
+    ExpectSectorsWellFormed(region, seed);
+    if (HasFatalFailure()) return;
+    const double half = oracle.outer;
+    const double box = 4.0 * half * half;
+    int inside = 0;
+    for (int i = 0; i < kProbes; ++i) {
+      const Vec2 p = oracle.apex + Vec2{rng.Uniform(-half, half), rng.Uniform(-half, half)};
+      const bool expected = oracle.Contains(p);
+      inside += expected;
+      if (oracle.BoundaryDistance(p) < 1e-9) continue;
+      ASSERT_EQ(region.Contains(p), expected)
+          << "seed " << seed << " probe " << i << " at " << p.x << "," << p.y;
+      int owners = 0;
+      for (const ScallopedSector& sector : region.sectors()) owners += sector.Contains(p - oracle.apex);
+      ASSERT_LE(owners, 1) << "sectors overlap, seed " << seed;
+    }
+    const double fraction = static_cast<double>(inside) / kProbes;
+    const double sigma = std::sqrt(std::max(fraction * (1.0 - fraction), 1.0 / kProbes) / kProbes);
+    ASSERT_NEAR(region.Area(), fraction * box, 5.0 * sigma * box) << "seed " << seed;
+    double sum = 0.0;
+    for (const ScallopedSector& sector : region.sectors()) sum += sector.Area();
+    ASSERT_NEAR(region.Area(), sum, 1e-12 * box) << "seed " << seed;
+    ASSERT_EQ(region.empty(), region.sectors().empty());
+    if (region.empty()) {
+      ASSERT_EQ(region.Area(), 0.0);
+      continue;
+    }
+    ++nonempty_cases;
+    for (int i = 0; i < 100; ++i) {
+      const Vec2 p = region.Sample(rng.Uniform(), rng.Uniform(), rng.Uniform());
+      ASSERT_TRUE(oracle.Contains(p) || oracle.BoundaryDistance(p) < 1e-9)
+          << "sample outside, seed " << seed << " sample " << i;
+    }
+  }
+  EXPECT_GT(nonempty_cases, 500);  // the generator must not make the test vacuous
+}
+
+// A more accurate area check on fewer cases: Monte Carlo with many probes.
+TEST(ScallopedRegionTest, AreaMatchesMonteCarloClosely) {
+  constexpr int kProbes = 200000;
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    Rng rng(4000 + seed);
+    const Oracle oracle = RandomOracle(rng);
+    ScallopedRegion region = ScallopedRegion::Annulus(oracle.apex, oracle.inner, oracle.outer);
+    oracle.ApplyTo(region);
+    const double half = oracle.outer;
+    const double box = 4.0 * half * half;
+    int inside = 0;
+    for (int i = 0; i < kProbes; ++i) {
+      inside += oracle.Contains(oracle.apex +
+                                Vec2{rng.Uniform(-half, half), rng.Uniform(-half, half)});
+    }
+    const double fraction = static_cast<double>(inside) / kProbes;
+    const double sigma = std::sqrt(std::max(fraction * (1.0 - fraction), 1.0 / kProbes) / kProbes);
+    EXPECT_NEAR(region.Area(), fraction * box, 5.0 * sigma * box) << "seed " << 4000 + seed;
+  }
+}
+
+// Normalised chi-square excess ((chi2 - dof) / sqrt(2 dof), ~N(0,1) under uniformity) of
+// `sampler` over a 10x10 grid on the region's bounding box; cell probabilities from membership on
+// a fine grid.
+double ChiSquareExcess(const ScallopedRegion& region,
+                       const std::function<Vec2(Rng&)>& sampler, Rng& rng) {
+  constexpr int kCells = 10;
+  constexpr int kFine = 500;
+  const double half = region.BoundingRadius();
+  const Vec2 low = region.apex() - Vec2{half, half};
+  std::vector<double> probability(kCells * kCells, 0.0);
+  double inside = 0.0;
+  for (int i = 0; i < kFine; ++i) {
+    for (int j = 0; j < kFine; ++j) {
+      const Vec2 p = low + Vec2{2.0 * half * (i + 0.5) / kFine, 2.0 * half * (j + 0.5) / kFine};
+      if (!region.Contains(p)) continue;
+      probability[(i * kCells / kFine) * kCells + j * kCells / kFine] += 1.0;
+      inside += 1.0;
+    }
+  }
+  constexpr int kSamples = 50000;
+  std::vector<double> observed(kCells * kCells, 0.0);
+  for (int s = 0; s < kSamples; ++s) {
+    const Vec2 p = sampler(rng) - low;
+    const int i = std::clamp(static_cast<int>(p.x / (2.0 * half) * kCells), 0, kCells - 1);
+    const int j = std::clamp(static_cast<int>(p.y / (2.0 * half) * kCells), 0, kCells - 1);
+    observed[i * kCells + j] += 1.0;
+  }
+  double statistic = 0.0;
+  int dof = -1;
+  for (int c = 0; c < kCells * kCells; ++c) {
+    const double expected = kSamples * probability[c] / inside;
+    if (expected < 20.0) continue;
+    statistic += (observed[c] - expected) * (observed[c] - expected) / expected;
+    ++dof;
+  }
+  return dof < 1 ? 0.0 : (statistic - dof) / std::sqrt(2.0 * dof);
+}
+
+constexpr double kChiSquareThreshold = 6.0;
+
+// An A1-like neighbourhood: annulus (2r, 4r) with nearby disks of radius 4r and 2r removed.
+ScallopedRegion NeighbourhoodLikeRegion(Rng& rng) {
+  ScallopedRegion region = ScallopedRegion::Annulus({3.0, -2.0}, 2.0, 4.0);
+  for (int i = 0; i < 4; ++i) {
+    region.SubtractDisk(Vec2{3.0, -2.0} + rng.Uniform(2.0, 6.0) * UnitAt(rng.Uniform(-kPi, kPi)),
+                        i < 2 ? 4.0 : 2.0);
+  }
+  return region;
+}
+
+TEST(ScallopedRegionTest, SamplesAreUniformByChiSquare) {
+  int tested = 0;
+  for (uint64_t seed = 1; seed <= 12; ++seed) {
+    Rng rng(7000 + seed);
+    const ScallopedRegion region = NeighbourhoodLikeRegion(rng);
+    if (region.empty() || region.sectors().size() < 2) continue;
+    ++tested;
+    const double excess = ChiSquareExcess(
+        region,
+        [&](Rng& r) { return region.Sample(r.Uniform(), r.Uniform(), r.Uniform()); }, rng);
+    EXPECT_LT(excess, kChiSquareThreshold) << "seed " << 7000 + seed;
+  }
+  EXPECT_GT(tested, 5);
+}
+
+TEST(ScallopedRegionTest, ChiSquareCatchesSectorChosenUniformly) {
+  // Planted fault: pick the sector uniformly instead of by area.
+  ScallopedRegion region = ScallopedRegion::Annulus({0.0, 0.0}, 2.0, 4.0);
+  region.SubtractDisk({4.5, 0.5}, 4.0);
+  region.SubtractDisk({-1.0, -5.0}, 2.0);
+  region.SubtractDisk({-3.5, 3.0}, 2.0);
+  ASSERT_GE(region.sectors().size(), 3u);
+  Rng rng(99);
+  const double honest = ChiSquareExcess(
+      region, [&](Rng& r) { return region.Sample(r.Uniform(), r.Uniform(), r.Uniform()); }, rng);
+  const double biased = ChiSquareExcess(
+      region,
+      [&](Rng& r) {
+        const auto& sectors = region.sectors();
+        const ScallopedSector& sector = sectors[r.Below(sectors.size())];
+        return region.apex() + sector.Sample(r.Uniform(), r.Uniform());
+      },
+      rng);
+  EXPECT_LT(honest, kChiSquareThreshold);
+  EXPECT_GT(biased, kChiSquareThreshold);
+}
+
+double AnnulusArea(double inner, double outer) { return kPi * (outer * outer - inner * inner); }
+
+// Area of the part of the disk of radius R (centred at the origin) beyond the line x = c.
+double SegmentArea(double radius, double c) {
+  if (c >= radius) return 0.0;
+  if (c <= -radius) return kPi * radius * radius;
+  return radius * radius * std::acos(c / radius) - c * std::sqrt(radius * radius - c * c);
+}
+
+// Area of the intersection of two disks with radii r1, r2 whose centres are d apart.
+double LensArea(double r1, double r2, double d) {
+  if (d >= r1 + r2) return 0.0;
+  if (d <= std::fabs(r1 - r2)) return kPi * std::min(r1, r2) * std::min(r1, r2);
+  return r1 * r1 * std::acos((d * d + r1 * r1 - r2 * r2) / (2.0 * d * r1)) +
+         r2 * r2 * std::acos((d * d + r2 * r2 - r1 * r1) / (2.0 * d * r2)) -
+         0.5 * std::sqrt((-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2));
+}
+
+TEST(ScallopedRegionTest, DegenerateDiskCases) {
+  const Vec2 apex{10.0, -3.0};
+  const double inner = 1.0;
+  const double outer = 2.0;
+  const double full = AnnulusArea(inner, outer);
+  const auto fresh = [&] { return ScallopedRegion::Annulus(apex, inner, outer); };
+  {
+    ScallopedRegion region = fresh();
+    EXPECT_NEAR(region.Area(), full, 1e-13);
+    region.SubtractDisk(apex + Vec2{2.5, 0.0}, 0.5);  // externally tangent: unchanged
+    EXPECT_NEAR(region.Area(), full, 1e-13);
+    region.SubtractDisk(apex + Vec2{50.0, 0.0}, 3.0);  // misses
+    EXPECT_NEAR(region.Area(), full, 1e-13);
+    region.SubtractDisk(apex + Vec2{0.2, 0.1}, 0.5);  // inside the hole
+    EXPECT_NEAR(region.Area(), full, 1e-13);
+  }
+  {
+    ScallopedRegion region = fresh();
+    region.SubtractDisk(apex + Vec2{0.0, 1.7}, 0.3);  // internally tangent to the outer circle
+    EXPECT_NEAR(region.Area(), full - kPi * 0.09, 1e-12);
+    region.SubtractDisk(apex + Vec2{-1.3, 0.0}, 0.3);  // tangent to the inner circle from outside
+    EXPECT_NEAR(region.Area(), full - 2.0 * kPi * 0.09, 1e-12);
+    region.SubtractDisk(apex + Vec2{0.0, -1.5}, 0.5);  // tangent to both circles
+    EXPECT_NEAR(region.Area(), full - 2.0 * kPi * 0.09 - kPi * 0.25, 1e-12);
+  }
+  {
+    ScallopedRegion region = fresh();
+    region.SubtractDisk(apex, 1.5);  // concentric: a thinner annulus
+    EXPECT_NEAR(region.Area(), AnnulusArea(1.5, outer), 1e-12);
+    EXPECT_TRUE(region.Contains(apex + Vec2{0.0, 1.75}));
+    EXPECT_FALSE(region.Contains(apex + Vec2{0.0, 1.25}));
+    region.SubtractDisk(apex, 1.5);  // the same disk again: unchanged
+    EXPECT_NEAR(region.Area(), AnnulusArea(1.5, outer), 1e-12);
+    region.IntersectDisk(apex, 1.8);
+    EXPECT_NEAR(region.Area(), AnnulusArea(1.5, 1.8), 1e-12);
+    region.IntersectDisk(apex, 1.8);
+    EXPECT_NEAR(region.Area(), AnnulusArea(1.5, 1.8), 1e-12);
+  }
+  {
+    ScallopedRegion region = fresh();
+    region.SubtractDisk(apex + Vec2{0.5, 0.5}, 3.0);  // contains the whole region
+    EXPECT_TRUE(region.empty());
+    EXPECT_EQ(region.Area(), 0.0);
+    region.SubtractDisk(apex, 1.0);  // operations on the empty region are harmless
+    region.IntersectHalfPlane({1.0, 0.0}, 0.0);
+    EXPECT_TRUE(region.empty());
+    EXPECT_FALSE(region.Contains(apex + Vec2{1.5, 0.0}));
+  }
+  {
+    ScallopedRegion region = fresh();
+    region.IntersectDisk(apex + Vec2{0.5, 0.5}, 3.0);  // contains the whole region: unchanged
+    EXPECT_NEAR(region.Area(), full, 1e-13);
+    region.IntersectDisk(apex + Vec2{10.0, 0.0}, 3.0);  // misses: empty
+    EXPECT_TRUE(region.empty());
+  }
+  {
+    // A disk of the outer radius shifted by e: leaves a thin crescent (a sliver) of area
+    // pi R^2 - lens(R, R, e).
+    for (const double e : {1e-2, 1e-4, 1e-6}) {
+      ScallopedRegion region = fresh();
+      region.SubtractDisk(apex + Vec2{e, 0.0}, outer);
+      const double lens = 2.0 * outer * outer * std::acos(e / (2.0 * outer)) -
+                          0.5 * e * std::sqrt(4.0 * outer * outer - e * e);
+      EXPECT_NEAR(region.Area(), kPi * outer * outer - lens, 1e-12) << "e " << e;
+      EXPECT_FALSE(region.Contains(apex + Vec2{0.0, 1.5}));
+      if (e >= 1e-4) {
+        EXPECT_TRUE(region.Contains(apex + Vec2{-outer + 0.3 * e, 0.0})) << "e " << e;
+      }
+    }
+  }
+  {
+    // A disk through the apex, and one containing it (the apex-inside case).
+    ScallopedRegion through = fresh();
+    through.SubtractDisk(apex + Vec2{0.0, 0.75}, 0.75);
+    EXPECT_NEAR(through.Area(), full - (kPi * 0.75 * 0.75 - LensArea(inner, 0.75, 0.75)), 1e-12);
+    ScallopedRegion containing = fresh();
+    containing.SubtractDisk(apex + Vec2{0.3, 0.0}, 1.5);
+    EXPECT_NEAR(containing.Area(), full - (LensArea(outer, 1.5, 0.3) - kPi * inner * inner),
+                1e-12);
+    ScallopedRegion kept = fresh();
+    kept.IntersectDisk(apex + Vec2{0.3, 0.0}, 1.5);
+    EXPECT_NEAR(kept.Area(), LensArea(outer, 1.5, 0.3) - kPi * inner * inner, 1e-12);
+  }
+}
+
+TEST(ScallopedRegionTest, DegenerateHalfPlaneCases) {
+  const Vec2 apex{-4.0, 7.0};
+  const double inner = 1.0;
+  const double outer = 3.0;
+  const double full = AnnulusArea(inner, outer);
+  const auto fresh = [&] { return ScallopedRegion::Annulus(apex, inner, outer); };
+  for (int i = 0; i < 16; ++i) {
+    const Vec2 normal = UnitAt(-kPi + i * kPi / 8.0 + 0.01 * i);
+    const double base = Dot(normal, apex);
+    {
+      ScallopedRegion region = fresh();
+      region.IntersectHalfPlane(normal, base);  // through the apex: half the annulus
+      EXPECT_NEAR(region.Area(), 0.5 * full, 1e-12) << i;
+      EXPECT_TRUE(region.Contains(apex - 2.0 * normal));
+      EXPECT_FALSE(region.Contains(apex + 2.0 * normal));
+    }
+    for (const double c : {0.3, 1.0, 1.7, 2.9}) {
+      ScallopedRegion keep_apex = fresh();
+      keep_apex.IntersectHalfPlane(normal, base + c);  // apex on the kept side
+      EXPECT_NEAR(keep_apex.Area(), full - SegmentArea(outer, c) + SegmentArea(inner, c), 1e-12)
+          << i << " " << c;
+      ScallopedRegion lose_apex = fresh();
+      lose_apex.IntersectHalfPlane(-1.0 * normal, -(base + c));  // apex outside the kept side
+      EXPECT_NEAR(lose_apex.Area(), SegmentArea(outer, c) - SegmentArea(inner, c), 1e-12)
+          << i << " " << c;
+    }
+    ScallopedRegion region = fresh();
+    region.IntersectHalfPlane(normal, base + outer);  // contains the region (tangent)
+    EXPECT_NEAR(region.Area(), full, 1e-13);
+    region.IntersectHalfPlane(normal, base - outer);  // misses it
+    EXPECT_TRUE(region.empty());
+  }
+  // Clipping to a rectangle around the apex: the square [-1.5, 1.5]^2 minus the unit disk.
+  ScallopedRegion region = fresh();
+  region.IntersectHalfPlane({1.0, 0.0}, apex.x + 1.5);
+  region.IntersectHalfPlane({-1.0, 0.0}, -(apex.x - 1.5));
+  region.IntersectHalfPlane({0.0, 1.0}, apex.y + 1.5);
+  region.IntersectHalfPlane({0.0, -1.0}, -(apex.y - 1.5));
+  EXPECT_NEAR(region.Area(), 9.0 - kPi, 1e-12);
+}
+
+}  // namespace
+}  // namespace scallop
