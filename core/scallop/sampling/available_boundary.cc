@@ -4,6 +4,50 @@
 #include <cmath>
 
 namespace scallop {
+namespace {
+constexpr double kFullTurnKey = 4.0;  // the pseudo-angle of a whole turn
+}  // namespace
+
+void AvailableBoundary::Reset() {
+  ranges_.clear();
+  ranges_.push_back({0.0, kFullTurnKey, {1, 0}, {1, 0}});
+}
+
+void AvailableBoundary::SubtractArc(Vec2 from, Vec2 to) {
+  const double begin = PseudoAngle(from), end = PseudoAngle(to);
+  if (begin <= end) {
+    SubtractKeys(begin, end, from, to);
+  } else {
+    SubtractKeys(begin, kFullTurnKey, from, {1, 0});
+    SubtractKeys(0.0, end, {1, 0}, to);
+  }
+}
+
+void AvailableBoundary::SubtractKeys(double begin, double end, Vec2 begin_direction,
+                                     Vec2 end_direction) {
+  scratch_.clear();
+  for (const Range& r : ranges_) {
+    if (r.end <= begin || r.begin >= end) {
+      scratch_.push_back(r);
+      continue;
+    }
+    if (r.begin < begin) scratch_.push_back({r.begin, begin, r.begin_direction, begin_direction});
+    if (r.end > end) scratch_.push_back({end, r.end, end_direction, r.end_direction});
+  }
+  ranges_.swap(scratch_);
+}
+
+void AvailableBoundary::Finish() {
+  size_t kept = 0;
+  for (const Range& r : ranges_) {
+    double begin = r.begin == 0.0 ? 0.0 : std::atan2(r.begin_direction.y, r.begin_direction.x);
+    double end = r.end == kFullTurnKey ? kTwoPi : std::atan2(r.end_direction.y, r.end_direction.x);
+    if (begin < 0) begin += kTwoPi;
+    if (end <= 0 && r.end > 2.0) end += kTwoPi;  // the lower half-turn maps to (pi, 2 pi]
+    if (begin < end) ranges_[kept++] = {begin, end, {}, {}};
+  }
+  ranges_.resize(kept);
+}
 
 double AvailableBoundary::TotalLength() const {
   double total = 0.0;
@@ -23,24 +67,11 @@ void AvailableBoundary::Subtract(double centre, double half_width) {
   if (begin >= kTwoPi) begin = 0.0;
   const double end = begin + 2 * half_width;
   if (end <= kTwoPi) {
-    SubtractNormalised(begin, end);
+    SubtractKeys(begin, end, {}, {});
   } else {
-    SubtractNormalised(begin, kTwoPi);
-    SubtractNormalised(0.0, end - kTwoPi);
+    SubtractKeys(begin, kTwoPi, {}, {});
+    SubtractKeys(0.0, end - kTwoPi, {}, {});
   }
-}
-
-void AvailableBoundary::SubtractNormalised(double begin, double end) {
-  scratch_.clear();
-  for (const Range& r : ranges_) {
-    if (r.end <= begin || r.begin >= end) {
-      scratch_.push_back(r);
-      continue;
-    }
-    if (r.begin < begin) scratch_.push_back({r.begin, begin});
-    if (r.end > end) scratch_.push_back({end, r.end});
-  }
-  ranges_.swap(scratch_);
 }
 
 double AvailableBoundary::SampleAngle(Rng& rng) const {
@@ -51,7 +82,7 @@ double AvailableBoundary::SampleAngle(Rng& rng) const {
     target -= length;
   }
   // Rounding in the running subtraction can leave target a hair past the sum.
-  return ranges_.back().end - 0.5 * (ranges_.back().end - ranges_.back().begin);
+  return ranges_.back().begin;
 }
 
 }  // namespace scallop

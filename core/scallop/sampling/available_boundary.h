@@ -1,40 +1,65 @@
-// AvailableBoundary: the part of a circle (a set of disjoint angular ranges in
-// [0, 2 pi)) where boundary sampling (A3) may still place a point.
+// AvailableBoundary: the part of a circle (a set of disjoint angular ranges)
+// where boundary sampling (A3) may still place a point.
+//
+// It is built in two phases. While the neighbours' arcs are removed, ranges
+// are keyed by a pseudo-angle: a monotone rational function of the direction
+// (no trigonometry, exact to rounding), with each end's direction kept. Then
+// Finish() turns the few surviving ends into true angles, in which points are
+// drawn uniformly and each placed point's arc is removed.
 #pragma once
 
 #include <vector>
 
+#include "scallop/geometry/vec2.h"
 #include "scallop/random/rng.h"
 
 namespace scallop {
 
 inline constexpr double kTwoPi = 6.283185307179586476925286766559;
 
+// The "diamond angle" of a non-zero direction: 0 along +x, 1 along +y, 2
+// along -x, 3 along -y, in [0, 4), increasing counterclockwise.
+inline double PseudoAngle(Vec2 v) {
+  if (v.y >= 0) return v.x >= 0 ? v.y / (v.x + v.y) : 1 - v.x / (v.y - v.x);
+  return v.x < 0 ? 2 - v.y / (-v.x - v.y) : 3 + v.x / (v.x - v.y);
+}
+
 class AvailableBoundary {
  public:
   struct Range {
-    double begin, end;  // begin < end, both in [0, 2 pi]
+    double begin, end;  // begin < end; pseudo-angles before Finish(), radians after
+    Vec2 begin_direction, end_direction;  // used before Finish() only
   };
 
-  // The whole circle. O(1); keeps the capacity already allocated.
-  void Reset() {
-    ranges_.clear();
-    ranges_.push_back({0.0, kTwoPi});
-  }
+  // The whole circle, in the pseudo-angle phase. O(1); keeps capacity.
+  void Reset();
 
   bool empty() const { return ranges_.empty(); }
   const std::vector<Range>& ranges() const { return ranges_; }
-  double TotalLength() const;
 
-  // Removes the closed arc of angles within `half_width` of `centre`
-  // (any real centre; half_width >= pi clears the circle). O(ranges).
+  // Pseudo-angle phase: removes the arc that runs counterclockwise from
+  // direction `from` to direction `to` (both non-zero). O(ranges).
+  void SubtractArc(Vec2 from, Vec2 to);
+  // Removes everything.
+  void Clear() { ranges_.clear(); }
+
+  // Ends the pseudo-angle phase: ranges become radians in [0, 2 pi], one
+  // atan2 per surviving end. Ranges that rounding made empty are dropped.
+  void Finish();
+
+  // Radian phase: removes the closed arc of angles within `half_width` of
+  // `centre` (any real centre; half_width >= pi clears the circle). O(ranges).
   void Subtract(double centre, double half_width);
 
-  // A uniformly distributed available angle. REQUIRES: !empty(). O(ranges).
+  // Radian phase: total length, and a uniformly distributed available angle
+  // (REQUIRES: !empty()). O(ranges).
+  double TotalLength() const;
   double SampleAngle(Rng& rng) const;
 
  private:
-  void SubtractNormalised(double begin, double end);  // 0 <= begin < end <= 2 pi
+  // Removes [begin, end] (keys of the current phase) with the given end
+  // directions for the pieces it cuts.
+  void SubtractKeys(double begin, double end, Vec2 begin_direction, Vec2 end_direction);
   std::vector<Range> ranges_;
   std::vector<Range> scratch_;
 };

@@ -13,18 +13,26 @@ namespace scallop {
 namespace {
 
 // Removes from `boundary` (a circle of radius `radius` about `centre`) the
-// angles whose point falls outside the half-open rectangle. The circle's
-// point at angle t is centre + radius (cos t, sin t).
+// arcs that fall outside the half-open rectangle: beyond an edge at distance
+// a along outward normal n, the arc from a n - h n' to a n + h n'
+// (counterclockwise, n' = n turned left, h = sqrt(radius^2 - a^2)).
 void ClipToRectangle(const Rect& rect, Vec2 centre, double radius, AvailableBoundary& boundary) {
-  // For each edge: the angles where the circle is beyond it form an arc
-  // centred on the edge's outward normal, of half-width acos(distance / radius).
-  const double distance_to_edge[4] = {rect.x1 - centre.x, rect.y1 - centre.y,
-                                      centre.x - rect.x0, centre.y - rect.y0};
-  for (int edge = 0; edge < 4; ++edge) {
-    const double ratio = distance_to_edge[edge] / radius;
-    if (ratio >= 1.0) continue;
-    const double half_width = ratio <= -1.0 ? kTwoPi : std::acos(ratio);
-    boundary.Subtract(edge * (kTwoPi / 4), half_width);
+  const struct {
+    Vec2 normal;
+    double distance;
+  } edges[4] = {{{1, 0}, rect.x1 - centre.x},
+                {{0, 1}, rect.y1 - centre.y},
+                {{-1, 0}, centre.x - rect.x0},
+                {{0, -1}, centre.y - rect.y0}};
+  for (const auto& [n, a] : edges) {
+    if (a >= radius) continue;
+    if (a <= -radius) {
+      boundary.Clear();
+      return;
+    }
+    const double h = std::sqrt(radius * radius - a * a);
+    const Vec2 left{-n.y, n.x};
+    boundary.SubtractArc(a * n - h * left, a * n + h * left);
   }
 }
 
@@ -74,15 +82,19 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng) {
     if (!domain.torus) ClipToRectangle(domain.rect, p, spacing, boundary);
     nearby.clear();
     grid.ForEachNear(p, 2 * spacing, [&](int32_t other, Vec2 q) {
-      if (other == index) return;
+      // Once nothing is left the rest of the neighbours cannot matter.
+      if (other == index || boundary.empty()) return;
       const Vec2 offset = q - p;
       const double distance_squared = SquaredLength(offset);
       if (distance_squared >= 4 * spacing_squared) return;
       nearby.push_back(q);
-      // q's disk of radius `spacing` covers the arc within acos(D / 2s) of q's direction.
-      const double distance = std::sqrt(distance_squared);
-      boundary.Subtract(std::atan2(offset.y, offset.x), std::acos(distance / (2 * spacing)));
+      // q's disk of radius s covers the arc of p's circle centred on the
+      // direction o = q - p with ends along o -+ k o', k = sqrt(4 s^2 / D^2 - 1).
+      const double k = std::sqrt(4 * spacing_squared / distance_squared - 1.0);
+      const Vec2 left{-offset.y, offset.x};
+      boundary.SubtractArc(offset - k * left, offset + k * left);
     });
+    boundary.Finish();
 
     while (!boundary.empty()) {
       const double angle = boundary.SampleAngle(rng);
