@@ -1,0 +1,167 @@
+// PlaneEngine: query validation, dependency closure, rank-by-rank parallel
+// generation through the shared cache, and assembly of results.
+#include "scallop/plane/plane_engine.h"
+
+#include <algorithm>
+#include <boost/asio/post.hpp>
+#include <boost/asio/thread_pool.hpp>
+#include <cmath>
+#include <latch>
+#include <map>
+#include <set>
+#include <string>
+
+#include "scallop/plane/point_id.h"
+
+namespace scallop {
+
+PlaneEngine::PlaneEngine(const PlaneEngineOptions& options)
+    : options_(options), cache_(options.cache_bytes) {
+  if (options_.threads > 1) {
+    pool_ = std::make_unique<boost::asio::thread_pool>(static_cast<size_t>(options_.threads));
+  }
+}
+
+PlaneEngine::~PlaneEngine() {
+  if (pool_) pool_->join();
+}
+
+Status PlaneEngine::ValidateQuery(const World& world, const Rect& rect) const {
+  if (Status status = ValidateWorld(world); !status.ok()) return status;
+  const std::pair<const char*, double> corners[] = {
+      {"rect.x0", rect.x0}, {"rect.y0", rect.y0}, {"rect.x1", rect.x1}, {"rect.y1", rect.y1}};
+  const double limit = RegionLayout(world.min_distance).precision_limit();
+  for (const auto& [field, value] : corners) {
+    if (!std::isfinite(value)) return InvalidArgument(std::string(field) + ": must be finite");
+    if (std::abs(value) > limit) {
+      return OutOfRange(std::string(field) + ": |value| must be at most 2^32 * min_distance = " +
+                        std::to_string(limit));
+    }
+  }
+  if (!(rect.x0 < rect.x1)) return InvalidArgument("rect: x0 must be less than x1");
+  if (!(rect.y0 < rect.y1)) return InvalidArgument("rect: y0 must be less than y1");
+  const double d = world.min_distance;
+  if (rect.Width() / d * (rect.Height() / d) > options_.max_query_area) {
+    return InvalidArgument("rect: area must be at most " + std::to_string(options_.max_query_area) +
+                           " * min_distance^2");
+  }
+  return Status::Ok();
+}
+
+std::vector<RegionKey> PlaneEngine::RegionsOverlapping(const World& world, const Rect& rect) const {
+  const RegionLayout layout(world.min_distance);
+  const RegionKey low = layout.RegionOf(rect.x0, rect.y0);
+  // The half-open rectangle ends just before x1: the last column is the one
+  // owning the largest double below x1.
+  const RegionKey high = layout.RegionOf(std::nextafter(rect.x1, rect.x0),
+                                         std::nextafter(rect.y1, rect.y0));
+  std::vector<RegionKey> keys;
+  for (int64_t j = low.j; j <= high.j; ++j) {
+    for (int64_t i = low.i; i <= high.i; ++i) keys.push_back({i, j});
+  }
+  return keys;
+}
+
+std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
+                                               const std::vector<RegionKey>& wanted) {
+  // Everything the wanted regions depend on, grouped by rank. Ranks strictly
+  // decrease along dependencies, so this closes in at most 3 steps.
+  std::map<RegionKey, RegionHandle> resolved;
+  std::set<RegionKey> by_rank[4];
+  std::vector<RegionKey> frontier(wanted.begin(), wanted.end());
+  while (!frontier.empty()) {
+    std::vector<RegionKey> next;
+    for (const RegionKey& key : frontier) {
+      if (!by_rank[RegionRank(key)].insert(key).second) continue;
+      for (const RegionKey& n : LowerRankedNeighbours(key)) next.push_back(n);
+    }
+    frontier.swap(next);
+  }
+
+  for (int rank = 0; rank < 4; ++rank) {
+    std::vector<RegionKey> mine;
+    std::vector<std::pair<RegionKey, std::shared_future<RegionHandle>>> theirs;
+    for (const RegionKey& key : by_rank[rank]) {
+      RegionCache::Lookup lookup = cache_.Acquire(world, key);
+      if (lookup.ready) {
+        resolved[key] = std::move(lookup.ready);
+      } else if (lookup.must_generate) {
+        mine.push_back(key);
+      } else {
+        theirs.emplace_back(key, std::move(lookup.pending));
+      }
+    }
+    // Same-rank regions never constrain each other: generate them in
+    // parallel. Each task reads only lower ranks, all resolved already.
+    std::vector<RegionHandle> generated(mine.size());
+    auto generate = [&](size_t n) {
+      std::vector<const RegionPoints*> neighbours;
+      for (const RegionKey& dependency : LowerRankedNeighbours(mine[n])) {
+        neighbours.push_back(resolved.at(dependency).get());
+      }
+      auto region = std::make_shared<const RegionPoints>(GenerateRegion(world, mine[n], neighbours));
+      cache_.Publish(world, mine[n], region);
+      generated[n] = std::move(region);
+    };
+    if (pool_ && mine.size() > 1) {
+      std::latch done(static_cast<std::ptrdiff_t>(mine.size()));
+      for (size_t n = 0; n < mine.size(); ++n) {
+        boost::asio::post(*pool_, [&, n] {
+          generate(n);
+          done.count_down();
+        });
+      }
+      done.wait();
+    } else {
+      for (size_t n = 0; n < mine.size(); ++n) generate(n);
+    }
+    for (size_t n = 0; n < mine.size(); ++n) resolved[mine[n]] = std::move(generated[n]);
+    for (auto& [key, future] : theirs) resolved[key] = future.get();
+  }
+
+  std::vector<RegionHandle> result;
+  result.reserve(wanted.size());
+  for (const RegionKey& key : wanted) result.push_back(resolved.at(key));
+  return result;
+}
+
+StatusOr<PlanePoints> PlaneEngine::Points(const World& world, const Rect& rect) {
+  if (Status status = ValidateQuery(world, rect); !status.ok()) return status;
+  const std::vector<RegionKey> keys = RegionsOverlapping(world, rect);
+  const std::vector<RegionHandle> regions = Resolve(world, keys);
+  PlanePoints result;
+  for (const RegionHandle& region : regions) {
+    const std::vector<Vec2>& points = region->points;
+    for (size_t k = 0; k < points.size(); ++k) {
+      if (rect.Contains(points[k])) {
+        result.positions.push_back(points[k]);
+        result.ids.push_back(EncodePointId(region->key, static_cast<uint32_t>(k)));
+      }
+    }
+  }
+  return result;
+}
+
+StatusOr<int64_t> PlaneEngine::Count(const World& world, const Rect& rect) {
+  if (Status status = ValidateQuery(world, rect); !status.ok()) return status;
+  int64_t count = 0;
+  for (const RegionHandle& region : Resolve(world, RegionsOverlapping(world, rect))) {
+    count += std::count_if(region->points.begin(), region->points.end(),
+                           [&](const Vec2& p) { return rect.Contains(p); });
+  }
+  return count;
+}
+
+StatusOr<RegionHandle> PlaneEngine::Region(const World& world, RegionKey key) {
+  if (Status status = ValidateWorld(world); !status.ok()) return status;
+  const RegionLayout layout(world.min_distance);
+  const Rect rect = layout.RegionRect(key);
+  const double limit = layout.precision_limit();
+  if (!(std::abs(rect.x0) <= limit && std::abs(rect.x1) <= limit && std::abs(rect.y0) <= limit &&
+        std::abs(rect.y1) <= limit)) {
+    return OutOfRange("region: lies beyond the precision range of 2^32 * min_distance");
+  }
+  return Resolve(world, {key}).front();
+}
+
+}  // namespace scallop

@@ -1,0 +1,76 @@
+// PlaneEngine: the infinite-plane queries. Any rectangle of any world, its
+// points exactly as the world defines them, whatever the query history, the
+// tiling, the cache state or the thread count. Thread-safe: one engine serves
+// every request of a server.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "scallop/base/status.h"
+#include "scallop/geometry/rect.h"
+#include "scallop/plane/region_cache.h"
+#include "scallop/plane/world.h"
+
+namespace boost::asio {
+class thread_pool;
+}
+
+namespace scallop {
+
+struct PlaneEngineOptions {
+  // Cache budget in bytes (about 20 bytes per point for A3).
+  int64_t cache_bytes = int64_t{512} << 20;
+  // Threads that generate regions; 1 generates on the calling thread.
+  int threads = 2;
+  // Largest query area, in units of d^2 (1e8 d^2 is about 85M points).
+  double max_query_area = 1e8;
+};
+
+// Points of a query, in a deterministic order: regions by row (j), then
+// column (i), ascending; within a region, in generation order.
+struct PlanePoints {
+  std::vector<Vec2> positions;
+  std::vector<uint64_t> ids;  // ids[k] is the id of positions[k] (point_id.h)
+};
+
+class PlaneEngine {
+ public:
+  explicit PlaneEngine(const PlaneEngineOptions& options);
+  ~PlaneEngine();
+  PlaneEngine(const PlaneEngine&) = delete;
+  PlaneEngine& operator=(const PlaneEngine&) = delete;
+
+  // The world's points in the half-open rectangle. Cost: O(area / d^2) for
+  // the regions it overlaps plus a halo of at most 2 regions on each side
+  // when cold; a copy when warm.
+  // Rejects: an invalid world (ValidateWorld); INVALID_ARGUMENT for a
+  // non-finite, empty or inverted rectangle or one larger than
+  // max_query_area d^2; OUT_OF_RANGE for a corner beyond 2^32 d.
+  StatusOr<PlanePoints> Points(const World& world, const Rect& rect);
+
+  // How many of the world's points lie in the rectangle. Same cost and errors.
+  StatusOr<int64_t> Count(const World& world, const Rect& rect);
+
+  // One whole region, shared (no copy). OUT_OF_RANGE beyond the precision range.
+  StatusOr<RegionHandle> Region(const World& world, RegionKey key);
+
+  // The same checks Points applies, for callers that validate at the edge.
+  Status ValidateQuery(const World& world, const Rect& rect) const;
+
+  RegionCacheStats CacheStats() const { return cache_.Stats(); }
+  const PlaneEngineOptions& options() const { return options_; }
+
+ private:
+  // Generated regions for `wanted` (all of them, in `wanted`'s order),
+  // generating missing ones and their lower-ranked dependencies rank by rank.
+  std::vector<RegionHandle> Resolve(const World& world, const std::vector<RegionKey>& wanted);
+  std::vector<RegionKey> RegionsOverlapping(const World& world, const Rect& rect) const;
+
+  PlaneEngineOptions options_;
+  RegionCache cache_;
+  std::unique_ptr<boost::asio::thread_pool> pool_;
+};
+
+}  // namespace scallop

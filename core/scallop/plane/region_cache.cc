@@ -1,0 +1,70 @@
+// RegionCache implementation: one mutex, a hash map and an LRU list.
+#include "scallop/plane/region_cache.h"
+
+#include "scallop/random/rng.h"
+
+namespace scallop {
+
+size_t RegionCache::KeyHash::operator()(const Key& k) const {
+  return HashWords({WorldFingerprint(k.world), static_cast<uint64_t>(k.region.i),
+                    static_cast<uint64_t>(k.region.j)});
+}
+
+RegionCache::Lookup RegionCache::Acquire(const World& world, RegionKey key) {
+  const Key k{CanonicalWorld(world), key};
+  std::lock_guard lock(mutex_);
+  auto it = entries_.find(k);
+  if (it != entries_.end()) {
+    ++stats_.hits;
+    Entry& entry = it->second;
+    if (entry.region) {
+      lru_.splice(lru_.begin(), lru_, entry.lru);
+      return {entry.region, {}, false};
+    }
+    return {nullptr, entry.future, false};
+  }
+  ++stats_.misses;
+  Entry entry;
+  entry.promise = std::make_shared<std::promise<RegionHandle>>();
+  entry.future = entry.promise->get_future().share();
+  entries_.emplace(k, std::move(entry));
+  return {nullptr, {}, true};
+}
+
+void RegionCache::Publish(const World& world, RegionKey key, RegionHandle region) {
+  const Key k{CanonicalWorld(world), key};
+  std::shared_ptr<std::promise<RegionHandle>> promise;
+  {
+    std::lock_guard lock(mutex_);
+    Entry& entry = entries_.at(k);
+    promise = std::move(entry.promise);
+    entry.region = region;
+    entry.bytes = static_cast<int64_t>(region->Bytes());
+    lru_.push_front(k);
+    entry.lru = lru_.begin();
+    stats_.bytes += entry.bytes;
+    ++stats_.regions;
+    EvictOverBudget();
+  }
+  promise->set_value(std::move(region));
+}
+
+void RegionCache::EvictOverBudget() {
+  while (stats_.bytes > byte_budget_ && !lru_.empty()) {
+    auto it = entries_.find(lru_.back());
+    stats_.bytes -= it->second.bytes;
+    --stats_.regions;
+    ++stats_.evictions;
+    entries_.erase(it);
+    lru_.pop_back();
+  }
+}
+
+RegionCacheStats RegionCache::Stats() const {
+  std::lock_guard lock(mutex_);
+  RegionCacheStats stats = stats_;
+  stats.byte_budget = byte_budget_;
+  return stats;
+}
+
+}  // namespace scallop

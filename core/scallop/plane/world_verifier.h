@@ -1,0 +1,22 @@
+// Verifies the contract on a rectangle of a world: the rectangle's points plus
+// a halo of 2 d go through the Delaunay verifier, with pairs across region
+// seams counted apart. What `scallop verify` and the Verify RPC run.
+#pragma once
+
+#include "scallop/plane/plane_engine.h"
+#include "scallop/verify/delaunay_verifier.h"
+
+namespace scallop {
+
+// The maximality tolerance for a window whose coordinates reach `max_abs`:
+// the samplers' spacing margin there (sampling/spacing.h), doubled for the
+// rounding of circumcentres, and never below the verifier's default.
+double MaximalityTolerance(double min_distance, double max_abs);
+
+// Verifies `rect` of `world`: spacing for every pair with an end inside,
+// maximality for every spot inside. Errors as PlaneEngine::Points, applied to
+// the rectangle grown by its 2 d halo (so OUT_OF_RANGE within 2 d of the limit).
+// Cost: one query of the grown rectangle plus O(N log N) for the verifier.
+StatusOr<VerifyReport> VerifyWorldRect(PlaneEngine& engine, const World& world, const Rect& rect);
+
+}  // namespace scallop
