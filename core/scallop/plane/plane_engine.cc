@@ -64,35 +64,35 @@ std::vector<RegionKey> PlaneEngine::RegionsOverlapping(const World& world, const
 
 std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
                                                const std::vector<RegionKey>& wanted) {
-  // Everything the wanted regions depend on, grouped by rank. Ranks strictly
-  // decrease along dependencies, so this closes in at most 3 steps.
+  // Look up the wanted regions; only those that must be generated pull in
+  // their lower-ranked neighbours, so a warm query costs one lookup a region.
   std::map<RegionKey, RegionHandle> resolved;
-  std::set<RegionKey> by_rank[4];
-  std::vector<RegionKey> frontier(wanted.begin(), wanted.end());
-  while (!frontier.empty()) {
-    std::vector<RegionKey> next;
-    for (const RegionKey& key : frontier) {
-      if (!by_rank[RegionRank(key)].insert(key).second) continue;
-      for (const RegionKey& n : LowerRankedNeighbours(key)) next.push_back(n);
+  std::set<RegionKey> to_generate[4];
+  std::vector<std::pair<RegionKey, std::shared_future<RegionHandle>>> pending[4];
+  std::set<RegionKey> seen;
+  std::vector<RegionKey> stack(wanted.rbegin(), wanted.rend());
+  while (!stack.empty()) {
+    const RegionKey key = stack.back();
+    stack.pop_back();
+    if (!seen.insert(key).second) continue;
+    RegionCache::Lookup lookup = cache_.Acquire(world, key);
+    if (lookup.ready) {
+      resolved.emplace(key, std::move(lookup.ready));
+    } else if (!lookup.must_generate) {
+      pending[RegionRank(key)].emplace_back(key, std::move(lookup.pending));
+    } else {
+      to_generate[RegionRank(key)].insert(key);
+      for (const RegionKey& n : LowerRankedNeighbours(key)) stack.push_back(n);
     }
-    frontier.swap(next);
   }
 
+  // Rank by rank: a region depends only on lower ranks, so once those are in
+  // `resolved` (ours generated, others' awaited) the rank's regions are
+  // independent and generate in parallel. Others' work of the same rank is
+  // awaited only after ours is done, so no thread waits on a thread that
+  // waits on it.
   for (int rank = 0; rank < 4; ++rank) {
-    std::vector<RegionKey> mine;
-    std::vector<std::pair<RegionKey, std::shared_future<RegionHandle>>> theirs;
-    for (const RegionKey& key : by_rank[rank]) {
-      RegionCache::Lookup lookup = cache_.Acquire(world, key);
-      if (lookup.ready) {
-        resolved[key] = std::move(lookup.ready);
-      } else if (lookup.must_generate) {
-        mine.push_back(key);
-      } else {
-        theirs.emplace_back(key, std::move(lookup.pending));
-      }
-    }
-    // Same-rank regions never constrain each other: generate them in
-    // parallel. Each task reads only lower ranks, all resolved already.
+    const std::vector<RegionKey> mine(to_generate[rank].begin(), to_generate[rank].end());
     std::vector<RegionHandle> generated(mine.size());
     auto generate = [&](size_t n) {
       std::vector<const RegionPoints*> neighbours;
@@ -115,8 +115,8 @@ std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
     } else {
       for (size_t n = 0; n < mine.size(); ++n) generate(n);
     }
-    for (size_t n = 0; n < mine.size(); ++n) resolved[mine[n]] = std::move(generated[n]);
-    for (auto& [key, future] : theirs) resolved[key] = future.get();
+    for (size_t n = 0; n < mine.size(); ++n) resolved.emplace(mine[n], std::move(generated[n]));
+    for (auto& [key, future] : pending[rank]) resolved.emplace(key, future.get());
   }
 
   std::vector<RegionHandle> result;
@@ -127,15 +127,27 @@ std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
 
 StatusOr<PlanePoints> PlaneEngine::Points(const World& world, const Rect& rect) {
   if (Status status = ValidateQuery(world, rect); !status.ok()) return status;
-  const std::vector<RegionKey> keys = RegionsOverlapping(world, rect);
-  const std::vector<RegionHandle> regions = Resolve(world, keys);
+  const RegionLayout layout(world.min_distance);
+  const std::vector<RegionHandle> regions = Resolve(world, RegionsOverlapping(world, rect));
+  size_t upper_bound = 0;
+  for (const RegionHandle& region : regions) upper_bound += region->points.size();
   PlanePoints result;
+  result.positions.reserve(upper_bound);
+  result.ids.reserve(upper_bound);
   for (const RegionHandle& region : regions) {
     const std::vector<Vec2>& points = region->points;
+    const Rect owned = layout.RegionRect(region->key);
+    const uint64_t first_id = EncodePointId(region->key, 0);
+    // Ids of one region are consecutive: the index sits in the low bits.
+    if (rect.x0 <= owned.x0 && owned.x1 <= rect.x1 && rect.y0 <= owned.y0 && owned.y1 <= rect.y1) {
+      result.positions.insert(result.positions.end(), points.begin(), points.end());
+      for (size_t k = 0; k < points.size(); ++k) result.ids.push_back(first_id + k);
+      continue;
+    }
     for (size_t k = 0; k < points.size(); ++k) {
       if (rect.Contains(points[k])) {
         result.positions.push_back(points[k]);
-        result.ids.push_back(EncodePointId(region->key, static_cast<uint32_t>(k)));
+        result.ids.push_back(first_id + k);
       }
     }
   }
