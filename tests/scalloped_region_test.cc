@@ -22,7 +22,7 @@ enum class OperationKind { kSubtractDisk, kIntersectDisk, kHalfPlane };
 
 struct Operation {
   OperationKind kind;
-  Vec2 point;  // disk centre, or half-plane unit normal
+  Vec2 point;     // disk centre, or half-plane unit normal
   double scalar;  // disk radius, or half-plane offset
 };
 
@@ -138,8 +138,7 @@ void ExpectSectorsWellFormed(const ScallopedRegion& region, uint64_t seed) {
     ASSERT_GE(sector.angle_begin, -kPi) << "seed " << seed;
     ASSERT_LE(sector.angle_end, kPi) << "seed " << seed;
     for (int i = 0; i <= 16; ++i) {
-      const double angle =
-          sector.angle_begin + (sector.angle_end - sector.angle_begin) * i / 16.0;
+      const double angle = sector.angle_begin + (sector.angle_end - sector.angle_begin) * i / 16.0;
       const double g = sector.near.DistanceAt(angle);
       const double h = sector.far.DistanceAt(angle);
       ASSERT_GE(g, -1e-9) << "seed " << seed;
@@ -169,11 +168,15 @@ TEST(ScallopedRegionTest, MatchesMembershipOracle) {
       ASSERT_EQ(region.Contains(p), expected)
           << "seed " << seed << " probe " << i << " at " << p.x << "," << p.y;
       int owners = 0;
-      for (const ScallopedSector& sector : region.sectors()) owners += sector.Contains(p - oracle.apex);
+      for (const ScallopedSector& sector : region.sectors())
+        owners += sector.Contains(p - oracle.apex);
       ASSERT_LE(owners, 1) << "sectors overlap, seed " << seed;
     }
+    // The binomial spread under the claimed area (the observed fraction underestimates it when
+    // the region is tiny and few probes land inside).
     const double fraction = static_cast<double>(inside) / kProbes;
-    const double sigma = std::sqrt(std::max(fraction * (1.0 - fraction), 1.0 / kProbes) / kProbes);
+    const double claimed = std::clamp(region.Area() / box, 1.0 / kProbes, 1.0);
+    const double sigma = std::sqrt(claimed * (1.0 - claimed) / kProbes) + 1.0 / kProbes;
     ASSERT_NEAR(region.Area(), fraction * box, 5.0 * sigma * box) << "seed " << seed;
     double sum = 0.0;
     for (const ScallopedSector& sector : region.sectors()) sum += sector.Area();
@@ -193,6 +196,34 @@ TEST(ScallopedRegionTest, MatchesMembershipOracle) {
   EXPECT_GT(nonempty_cases, 500);  // the generator must not make the test vacuous
 }
 
+// Planted fault: a region that skipped one operation must be caught by the membership or area
+// comparison whenever that operation changed the region noticeably.
+TEST(ScallopedRegionTest, OracleComparisonCatchesASkippedOperation) {
+  int caught = 0;
+  int meaningful = 0;
+  for (uint64_t seed = 1; seed <= 200; ++seed) {
+    Rng rng(seed);
+    const Oracle oracle = RandomOracle(rng);
+    ScallopedRegion full = ScallopedRegion::Annulus(oracle.apex, oracle.inner, oracle.outer);
+    oracle.ApplyTo(full);
+    Oracle sabotaged = oracle;
+    sabotaged.operations.pop_back();
+    ScallopedRegion faulty = ScallopedRegion::Annulus(oracle.apex, oracle.inner, oracle.outer);
+    sabotaged.ApplyTo(faulty);
+    if (faulty.Area() - full.Area() < 0.02 * 4.0 * oracle.outer * oracle.outer) continue;
+    ++meaningful;
+    bool mismatch = false;
+    for (int i = 0; i < 3000 && !mismatch; ++i) {
+      const Vec2 p = oracle.apex + Vec2{rng.Uniform(-oracle.outer, oracle.outer),
+                                        rng.Uniform(-oracle.outer, oracle.outer)};
+      mismatch = oracle.BoundaryDistance(p) >= 1e-9 && faulty.Contains(p) != oracle.Contains(p);
+    }
+    caught += mismatch;
+  }
+  EXPECT_GT(meaningful, 20);
+  EXPECT_EQ(caught, meaningful);
+}
+
 // A more accurate area check on fewer cases: Monte Carlo with many probes.
 TEST(ScallopedRegionTest, AreaMatchesMonteCarloClosely) {
   constexpr int kProbes = 200000;
@@ -205,11 +236,14 @@ TEST(ScallopedRegionTest, AreaMatchesMonteCarloClosely) {
     const double box = 4.0 * half * half;
     int inside = 0;
     for (int i = 0; i < kProbes; ++i) {
-      inside += oracle.Contains(oracle.apex +
-                                Vec2{rng.Uniform(-half, half), rng.Uniform(-half, half)});
+      inside +=
+          oracle.Contains(oracle.apex + Vec2{rng.Uniform(-half, half), rng.Uniform(-half, half)});
     }
+    // The binomial spread under the claimed area (the observed fraction underestimates it when
+    // the region is tiny and few probes land inside).
     const double fraction = static_cast<double>(inside) / kProbes;
-    const double sigma = std::sqrt(std::max(fraction * (1.0 - fraction), 1.0 / kProbes) / kProbes);
+    const double claimed = std::clamp(region.Area() / box, 1.0 / kProbes, 1.0);
+    const double sigma = std::sqrt(claimed * (1.0 - claimed) / kProbes) + 1.0 / kProbes;
     EXPECT_NEAR(region.Area(), fraction * box, 5.0 * sigma * box) << "seed " << 4000 + seed;
   }
 }
@@ -217,8 +251,8 @@ TEST(ScallopedRegionTest, AreaMatchesMonteCarloClosely) {
 // Normalised chi-square excess ((chi2 - dof) / sqrt(2 dof), ~N(0,1) under uniformity) of
 // `sampler` over a 10x10 grid on the region's bounding box; cell probabilities from membership on
 // a fine grid.
-double ChiSquareExcess(const ScallopedRegion& region,
-                       const std::function<Vec2(Rng&)>& sampler, Rng& rng) {
+double ChiSquareExcess(const ScallopedRegion& region, const std::function<Vec2(Rng&)>& sampler,
+                       Rng& rng) {
   constexpr int kCells = 10;
   constexpr int kFine = 500;
   const double half = region.BoundingRadius();
@@ -272,8 +306,7 @@ TEST(ScallopedRegionTest, SamplesAreUniformByChiSquare) {
     if (region.empty() || region.sectors().size() < 2) continue;
     ++tested;
     const double excess = ChiSquareExcess(
-        region,
-        [&](Rng& r) { return region.Sample(r.Uniform(), r.Uniform(), r.Uniform()); }, rng);
+        region, [&](Rng& r) { return region.Sample(r.Uniform(), r.Uniform(), r.Uniform()); }, rng);
     EXPECT_LT(excess, kChiSquareThreshold) << "seed " << 7000 + seed;
   }
   EXPECT_GT(tested, 5);
@@ -396,8 +429,7 @@ TEST(ScallopedRegionTest, DegenerateDiskCases) {
     EXPECT_NEAR(through.Area(), full - (kPi * 0.75 * 0.75 - LensArea(inner, 0.75, 0.75)), 1e-12);
     ScallopedRegion containing = fresh();
     containing.SubtractDisk(apex + Vec2{0.3, 0.0}, 1.5);
-    EXPECT_NEAR(containing.Area(), full - (LensArea(outer, 1.5, 0.3) - kPi * inner * inner),
-                1e-12);
+    EXPECT_NEAR(containing.Area(), full - (LensArea(outer, 1.5, 0.3) - kPi * inner * inner), 1e-12);
     ScallopedRegion kept = fresh();
     kept.IntersectDisk(apex + Vec2{0.3, 0.0}, 1.5);
     EXPECT_NEAR(kept.Area(), LensArea(outer, 1.5, 0.3) - kPi * inner * inner, 1e-12);

@@ -239,8 +239,8 @@ TEST(ScallopedSectorTest, SamplesLieInsideTheSector) {
 }
 
 // Chi-square of `sampler`'s points over an 8x8 grid on the sector's bounding box, with cell
-// probabilities estimated from a fine membership grid. Returns statistic / degrees of freedom
-// scaled so that values above ~1.6 reject uniformity (dof ~ 30..60, 5 sigma).
+// probabilities estimated from a fine membership grid. Returns (chi2 - dof) / sqrt(2 dof), about
+// N(0, 1) under uniformity; kChiSquareThreshold standard deviations reject.
 double ChiSquareExcess(const ScallopedSector& sector,
                        const std::function<Vec2(double, double)>& sampler, Rng& rng) {
   Vec2 low, high;

@@ -13,7 +13,7 @@ RadialCurve RadialCurve::Arc(Vec2 centre, double radius, int sign) {
   curve.vector_ = centre;
   curve.scalar_ = radius;
   curve.sign_ = static_cast<int8_t>(sign < 0 ? -1 : 1);
-  curve.centre_distance_ = Length(centre);
+  curve.centre_distance_ = std::sqrt(SquaredLength(centre));  // std::hypot is slow
   // atan2(0, 0) = 0: for a circle centred on the apex gamma is arbitrary and cancels.
   curve.polar_angle_ = std::atan2(centre.y, centre.x);
   return curve;
@@ -32,21 +32,29 @@ RadialCurve RadialCurve::Line(Vec2 unit_normal, double offset) {
   return curve;
 }
 
-double RadialCurve::HalfSquareIntegral(double angle) const {
+double RadialCurve::HalfSquareIntegralAlong(double angle, Vec2 direction) const {
+  if (kind_ == Kind::kLine) {
+    // tan(t - phi) = sin / cos of the angle between the normal and the ray.
+    return 0.5 * scalar_ * scalar_ * Cross(vector_, direction) / Dot(vector_, direction);
+  }
   const double u = angle - polar_angle_;
-  if (kind_ == Kind::kLine) return 0.5 * scalar_ * scalar_ * std::tan(u);
-  const double d = centre_distance_;
   const double radius_squared = scalar_ * scalar_;
-  double integral = radius_squared * u + 0.5 * d * d * std::sin(2.0 * u);
-  if (scalar_ > 0.0) {
-    // w sqrt(R^2 - w^2) + R^2 asin(w / R) written as w S + R^2 atan2(w, S) with S = sqrt((R - w)
+  const double along = Dot(vector_, direction);     // d cos u
+  const double across = Cross(vector_, direction);  // w = d sin u
+  // (d^2 / 2) sin 2u = (d cos u)(d sin u).
+  double integral = radius_squared * u + along * across;
+  if (scalar_ > 0.0 && across != 0.0) {
+    // w sqrt(R^2 - w^2) + R^2 asin(w / R) written as w S + R^2 atan(w / S) with S = sqrt((R - w)
     // (R + w)): near the tangent rays (|w| -> R) asin and R^2 - w^2 each lose half the digits,
     // while this form is well conditioned in both w and S (its partial derivatives vanish there).
-    double w = d * std::sin(u);
+    // w == 0 (always, for a circle centred on the apex) contributes nothing: skip the atan.
+    double w = across;
     if (w > scalar_) w = scalar_;  // rounding can push |w| a hair past R at tangent rays
     if (w < -scalar_) w = -scalar_;
     const double root = std::sqrt((scalar_ - w) * (scalar_ + w));
-    integral += sign_ * (w * root + radius_squared * std::atan2(w, root));
+    // atan(w / S) equals atan2(w, S) for S >= 0 (S = 0 gives +-inf -> +-pi/2) and is cheaper;
+    // the division's rounding moves the result by at most half an ulp of pi/2.
+    integral += sign_ * (w * root + radius_squared * std::atan(w / root));
   }
   return 0.5 * integral;
 }

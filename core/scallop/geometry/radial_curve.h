@@ -17,7 +17,7 @@ class RadialCurve {
   // `centre`): sign +1 the farther crossing, -1 the nearer one, so that
   //   rho(t) = d cos(t - gamma) + sign * sqrt(radius^2 - (d sin(t - gamma))^2)
   // with (d, gamma) the polar coordinates of `centre`. A circle centred on the apex is an arc with
-  // sign +1 and rho = radius. Cost: one atan2 and one hypot.
+  // sign +1 and rho = radius. Cost: one atan2 and one sqrt.
   // REQUIRES: radius >= 0, sign in {-1, +1}, finite inputs.
   static RadialCurve Arc(Vec2 centre, double radius, int sign);
 
@@ -27,6 +27,14 @@ class RadialCurve {
   // describes the same line), so equal lines compare equal. Cost: one atan2.
   // REQUIRES: |unit_normal| = 1 to rounding, finite inputs.
   static RadialCurve Line(Vec2 unit_normal, double offset);
+
+  // The other half of the same circle (sign negated), without recomputing its polar form. O(1).
+  // REQUIRES: is_arc().
+  RadialCurve OppositeHalf() const {
+    RadialCurve curve = *this;
+    curve.sign_ = static_cast<int8_t>(-sign_);
+    return curve;
+  }
 
   Kind kind() const { return kind_; }
   bool is_arc() const { return kind_ == Kind::kArc; }
@@ -59,10 +67,16 @@ class RadialCurve {
   //   Arc:  F = (R^2 u + (d^2 / 2) sin 2u + sign (w sqrt(R^2 - w^2) + R^2 asin(w / R))) / 2
   //   Line: F = (c^2 / 2) tan(t - phi)
   // Continuous on any angular range where the curve is defined (arc: |w| <= R; line: cos != 0).
-  // Cost: one sin, one sqrt and one atan2 (arc) or one tan (line). Absolute error a few ulps of
-  // max(d, R)^2 * (1 + |u|) for arcs, also at the tangent rays (evaluated in a form that stays
+  // Cost: one sincos, one sqrt and one atan (arc) or one sincos (line). Absolute error a few ulps
+  // of max(d, R)^2 * (1 + |u|) for arcs, also at the tangent rays (evaluated in a form that stays
   // well conditioned there); differences of nearby values lose relative accuracy.
-  double HalfSquareIntegral(double angle) const;
+  double HalfSquareIntegral(double angle) const {
+    return HalfSquareIntegralAlong(angle, UnitAt(angle));
+  }
+  // As HalfSquareIntegral, given also direction = UnitAt(angle) (to rounding), which callers often
+  // have already: then no sin/cos is needed (sin u, cos u come from dot and cross products), only
+  // one atan for arcs not centred on the apex. REQUIRES: |direction| = 1, its angle == angle.
+  double HalfSquareIntegralAlong(double angle, Vec2 direction) const;
 
   friend bool operator==(const RadialCurve& a, const RadialCurve& b) {
     return a.kind_ == b.kind_ && a.sign_ == b.sign_ && a.vector_ == b.vector_ &&

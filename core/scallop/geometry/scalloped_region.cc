@@ -24,6 +24,10 @@ struct KeptInterval {
 };
 
 Vec2 Perpendicular(Vec2 v) { return {-v.y, v.x}; }
+// sqrt of the squared length: std::hypot (Length) guards against overflow we cannot meet here and
+// costs several times more.
+double FastLength(Vec2 v) { return std::sqrt(SquaredLength(v)); }
+Vec2 Normalized(Vec2 v) { return (1.0 / FastLength(v)) * v; }
 
 // Whether [begin, end] (inside [-pi, pi]) overlaps the angular span [span_begin, span_end], which
 // wraps through pi when span_end < span_begin.
@@ -41,8 +45,8 @@ class DiskOperation {
         radius_(radius),
         subtract_(subtract),
         apex_inside_(centre_distance <= radius),
-        near_arc_(RadialCurve::Arc(centre, radius, -1)),
-        far_arc_(RadialCurve::Arc(centre, radius, +1)) {
+        far_arc_(RadialCurve::Arc(centre, radius, +1)),
+        near_arc_(far_arc_.OppositeHalf()) {
     if (apex_inside_) return;
     // Tangent points from the apex: where the circle's near and far halves meet.
     const double d2 = centre_distance * centre_distance;
@@ -53,6 +57,8 @@ class DiskOperation {
     const Vec2 counter_clockwise = base + side;
     span_begin_ = std::atan2(clockwise.y, clockwise.x);
     span_end_ = std::atan2(counter_clockwise.y, counter_clockwise.x);
+    span_begin_direction_ = Normalized(clockwise);
+    span_end_direction_ = Normalized(counter_clockwise);
   }
 
   // Sectors whose wedge the disk cannot reach: subtract keeps them, intersect drops them.
@@ -63,10 +69,12 @@ class DiskOperation {
   bool KeepsUntouched() const { return subtract_; }
   const RadialCurve& boundary() const { return far_arc_; }
 
-  int FixedAngles(double angles[2]) const {
+  int FixedAngles(double angles[2], Vec2 directions[2]) const {
     if (apex_inside_) return 0;
     angles[0] = span_begin_;
     angles[1] = span_end_;
+    directions[0] = span_begin_direction_;
+    directions[1] = span_end_direction_;
     return 2;
   }
 
@@ -105,10 +113,12 @@ class DiskOperation {
   double radius_;
   bool subtract_;
   bool apex_inside_;
-  RadialCurve near_arc_;
   RadialCurve far_arc_;
+  RadialCurve near_arc_;
   double span_begin_ = -kPi;
   double span_end_ = kPi;
+  Vec2 span_begin_direction_;
+  Vec2 span_end_direction_;
 };
 
 // The half-plane {x : Dot(normal, x) <= offset}, apex-relative.
@@ -122,9 +132,11 @@ class HalfPlaneOperation {
   const RadialCurve& boundary() const { return line_; }
 
   // Rays parallel to the line, where the kept interval switches between bounded and unbounded.
-  int FixedAngles(double angles[2]) const {
-    angles[0] = std::atan2(normal_.x, -normal_.y);
-    angles[1] = std::atan2(-normal_.x, normal_.y);
+  int FixedAngles(double angles[2], Vec2 directions[2]) const {
+    directions[0] = {-normal_.y, normal_.x};
+    directions[1] = {normal_.y, -normal_.x};
+    angles[0] = std::atan2(directions[0].y, directions[0].x);
+    angles[1] = std::atan2(directions[1].y, directions[1].x);
     return 2;
   }
 
@@ -192,10 +204,43 @@ double ClassifyAlong(const Operation& operation, const ScallopedSector& sector, 
   return margin;
 }
 
-// Adds `angle` to `angles` when strictly inside (begin, end).
-inline void AddIfInside(double angle, double begin, double end, double* angles, int& count) {
-  if (angle > begin && angle < end) angles[count++] = angle;
-}
+// Critical angles of one sector with their unit directions, so that areas and probes need no
+// further trigonometry. At most 2 fixed angles + 2 crossings with each of near and far + 2 ends.
+struct CriticalAngles {
+  double angles[8];
+  Vec2 directions[8];
+  int count = 0;
+
+  void AddIfInside(double angle, Vec2 direction, double begin, double end) {
+    if (angle > begin && angle < end) {
+      angles[count] = angle;
+      directions[count] = direction;
+      ++count;
+    }
+  }
+  // Insertion sort of entries [1, count): at most six, and std::sort trips -Warray-bounds here.
+  void SortInterior() {
+    for (int i = 2; i < count; ++i) {
+      const double angle = angles[i];
+      const Vec2 direction = directions[i];
+      int j = i;
+      for (; j > 1 && angles[j - 1] > angle; --j) {
+        angles[j] = angles[j - 1];
+        directions[j] = directions[j - 1];
+      }
+      angles[j] = angle;
+      directions[j] = direction;
+    }
+  }
+};
+
+// A run of consecutive pieces [first, last] (indices of critical angles) with the same bounds.
+struct PieceRun {
+  int first;
+  int last;
+  const RadialCurve* lower;
+  const RadialCurve* upper;
+};
 
 }  // namespace
 
@@ -207,9 +252,10 @@ ScallopedRegion ScallopedRegion::Annulus(Vec2 apex, double inner, double outer) 
   region.sectors_.push_back({-kPi, 0.0, near, far});
   region.sectors_.push_back({0.0, kPi, near, far});
   for (const ScallopedSector& sector : region.sectors_) {
-    region.sector_areas_.push_back(sector.Area());
+    region.sector_cache_.push_back(
+        {sector.Area(), UnitAt(sector.angle_begin), UnitAt(sector.angle_end)});
   }
-  region.area_ = region.sector_areas_[0] + region.sector_areas_[1];
+  region.area_ = region.sector_cache_[0].area + region.sector_cache_[1].area;
   region.outer_bound_ = outer;
   region.inner_bound_ = inner;
   region.negligible_area_ = kNegligibleAreaFraction * region.area_;
@@ -218,113 +264,138 @@ ScallopedRegion ScallopedRegion::Annulus(Vec2 apex, double inner, double outer) 
 
 void ScallopedRegion::Clear() {
   sectors_.clear();
-  sector_areas_.clear();
+  sector_cache_.clear();
   area_ = 0.0;
 }
 
 template <typename Operation>
 void ScallopedRegion::Apply(const Operation& operation) {
   scratch_sectors_.clear();
-  scratch_areas_.clear();
+  scratch_cache_.clear();
   double total = 0.0;
   // Distances closer than this at a probe count as a tie (rounding-level relative to the region).
   const double tie_tolerance = 1e-9 * outer_bound_;
   double fixed[2];
-  const int fixed_count = operation.FixedAngles(fixed);
+  Vec2 fixed_directions[2];
+  const int fixed_count = operation.FixedAngles(fixed, fixed_directions);
   for (size_t index = 0; index < sectors_.size(); ++index) {
     const ScallopedSector& sector = sectors_[index];
     if (!operation.MayTouch(sector)) {
       if (operation.KeepsUntouched()) {
         scratch_sectors_.push_back(sector);
-        scratch_areas_.push_back(sector_areas_[index]);
-        total += sector_areas_[index];
+        scratch_cache_.push_back(sector_cache_[index]);
+        total += sector_cache_[index].area;
       }
       continue;
     }
     const double begin = sector.angle_begin;
     const double end = sector.angle_end;
-    // Critical angles: at most 2 fixed + 2 crossings with each of near and far, plus the ends.
-    double angles[8];
-    int count = 0;
-    angles[count++] = begin;
-    for (int i = 0; i < fixed_count; ++i) AddIfInside(fixed[i], begin, end, angles, count);
+    const Vec2 begin_direction = sector_cache_[index].begin_direction;
+    const Vec2 end_direction = sector_cache_[index].end_direction;
+    CriticalAngles critical;
+    critical.angles[0] = begin;
+    critical.directions[0] = begin_direction;
+    critical.count = 1;
+    for (int i = 0; i < fixed_count; ++i) {
+      critical.AddIfInside(fixed[i], fixed_directions[i], begin, end);
+    }
     Vec2 points[2];
     for (const RadialCurve* curve : {&sector.near, &sector.far}) {
       const int crossings = CurveCrossings(operation.boundary(), *curve, points);
       for (int i = 0; i < crossings; ++i) {
-        AddIfInside(std::atan2(points[i].y, points[i].x), begin, end, angles, count);
+        // Sectors are at most pi wide, so two cross products reject crossings outside the wedge
+        // before paying for an atan2 (this also drops a crossing at the apex, which splits no ray).
+        if (!(Cross(begin_direction, points[i]) > 0.0 && Cross(points[i], end_direction) > 0.0)) {
+          continue;
+        }
+        critical.AddIfInside(std::atan2(points[i].y, points[i].x), Normalized(points[i]), begin,
+                             end);
       }
     }
-    // Insertion sort: at most six entries, and std::sort trips GCC 12's -Warray-bounds here.
-    for (int i = 2; i < count; ++i) {
-      const double value = angles[i];
-      int j = i;
-      for (; j > 1 && angles[j - 1] > value; --j) angles[j] = angles[j - 1];
-      angles[j] = value;
-    }
-    angles[count++] = end;
+    critical.SortInterior();
+    critical.angles[critical.count] = end;
+    critical.directions[critical.count] = end_direction;
+    ++critical.count;
 
-    // Each piece yields at most two sectors (a subtracted disk splits a ray's interval in two).
-    ScallopedSector pieces[14];
-    int piece_count = 0;
-    for (int i = 0; i + 1 < count; ++i) {
-      const double piece_begin = angles[i];
-      const double piece_end = angles[i + 1];
-      if (!(piece_end > piece_begin)) continue;
+    // Each piece yields at most two runs (a subtracted disk splits a ray's interval in two).
+    PieceRun runs[14];
+    int run_count = 0;
+    for (int i = 0; i + 1 < critical.count; ++i) {
+      const double piece_begin = critical.angles[i];
+      const double piece_end = critical.angles[i + 1];
+      const double width = piece_end - piece_begin;
+      if (!(width > 0.0)) continue;
       // Probe off-centre: symmetric configurations (a disk tangent to a circle, a line tangent to
       // the inner circle) touch exactly at a piece's mid-angle, where a tie hides the piece.
       // Two distinct circles (or a circle and a line) touch at most once without crossing, so if
       // the first probe is close to a tie the second one is not, unless the curves coincide.
+      // Any ray inside the piece will do, so interpolate directions instead of calling sincos.
+      // Chords between the ends are fine below a right angle; wider pieces (up to pi) go through
+      // the direction a right angle past the start, which lies inside them.
+      const Vec2 first = critical.directions[i];
+      const Vec2 last = critical.directions[i + 1];
+      const auto probe = [&](double fraction) {
+        if (width < 2.0) return Normalized((1.0 - fraction) * first + fraction * last);
+        const Vec2 middle = Perpendicular(first);
+        return fraction < 0.5 ? Normalized(first + middle) : Normalized(middle + last);
+      };
       PieceBounds bounds[2];
       int bounds_count = 0;
-      const double width = piece_end - piece_begin;
-      const double margin = ClassifyAlong(operation, sector,
-                                          UnitAt(piece_begin + kFirstProbe * width), bounds,
-                                          bounds_count);
+      const double margin =
+          ClassifyAlong(operation, sector, probe(kFirstProbe), bounds, bounds_count);
       if (margin <= tie_tolerance) {
         PieceBounds second[2];
         int second_count = 0;
-        if (ClassifyAlong(operation, sector, UnitAt(piece_begin + kSecondProbe * width), second,
-                          second_count) > margin) {
+        if (ClassifyAlong(operation, sector, probe(kSecondProbe), second, second_count) > margin) {
           std::copy(second, second + second_count, bounds);
           bounds_count = second_count;
         }
       }
       for (int k = 0; k < bounds_count; ++k) {
-        const RadialCurve& lower = *bounds[k].lower;
-        const RadialCurve& upper = *bounds[k].upper;
         bool merged = false;
-        for (int p = 0; p < piece_count; ++p) {
-          ScallopedSector& previous = pieces[p];
-          if (previous.angle_end == piece_begin && previous.near == lower && previous.far == upper) {
-            previous.angle_end = piece_end;
+        for (int r = 0; r < run_count; ++r) {
+          PieceRun& run = runs[r];
+          if (run.last == i && run.lower == bounds[k].lower && run.upper == bounds[k].upper) {
+            run.last = i + 1;
             merged = true;
             break;
           }
         }
-        if (!merged) pieces[piece_count++] = {piece_begin, piece_end, lower, upper};
+        if (!merged) runs[run_count++] = {i, i + 1, bounds[k].lower, bounds[k].upper};
       }
     }
-    for (int p = 0; p < piece_count; ++p) {
-      const ScallopedSector& piece = pieces[p];
-      const bool unchanged = piece.angle_begin == begin && piece.angle_end == end &&
-                             piece.near == sector.near && piece.far == sector.far;
-      const double area = unchanged ? sector_areas_[index] : piece.Area();
+    for (int r = 0; r < run_count; ++r) {
+      const PieceRun& run = runs[r];
+      const bool unchanged = run.first == 0 && run.last == critical.count - 1 &&
+                             run.lower == &sector.near && run.upper == &sector.far;
+      double area = sector_cache_[index].area;
+      if (!unchanged) {
+        const double t0 = critical.angles[run.first];
+        const double t1 = critical.angles[run.last];
+        const Vec2 e0 = critical.directions[run.first];
+        const Vec2 e1 = critical.directions[run.last];
+        area = (run.upper->HalfSquareIntegralAlong(t1, e1) -
+                run.upper->HalfSquareIntegralAlong(t0, e0)) -
+               (run.lower->HalfSquareIntegralAlong(t1, e1) -
+                run.lower->HalfSquareIntegralAlong(t0, e0));
+      }
       if (!(area > negligible_area_)) continue;
-      scratch_sectors_.push_back(piece);
-      scratch_areas_.push_back(area);
+      scratch_sectors_.push_back(
+          {critical.angles[run.first], critical.angles[run.last], *run.lower, *run.upper});
+      scratch_cache_.push_back(
+          {area, critical.directions[run.first], critical.directions[run.last]});
       total += area;
     }
   }
   sectors_.swap(scratch_sectors_);
-  sector_areas_.swap(scratch_areas_);
+  sector_cache_.swap(scratch_cache_);
   area_ = total;
 }
 
 void ScallopedRegion::SubtractDisk(Vec2 centre, double radius) {
   if (sectors_.empty()) return;
   const Vec2 relative = centre - apex_;
-  const double distance = Length(relative);
+  const double distance = FastLength(relative);
   if (distance >= radius + outer_bound_ || distance + radius <= inner_bound_) return;
   if (distance + outer_bound_ <= radius) {
     Clear();
@@ -336,7 +407,7 @@ void ScallopedRegion::SubtractDisk(Vec2 centre, double radius) {
 void ScallopedRegion::IntersectDisk(Vec2 centre, double radius) {
   if (sectors_.empty()) return;
   const Vec2 relative = centre - apex_;
-  const double distance = Length(relative);
+  const double distance = FastLength(relative);
   if (distance + outer_bound_ <= radius) return;
   if (distance >= radius + outer_bound_ || distance + radius <= inner_bound_) {
     Clear();
@@ -362,11 +433,11 @@ Vec2 ScallopedRegion::Sample(double u0, double u1, double u2) const {
   double remaining = u0 * area_;
   size_t chosen = sectors_.size() - 1;
   for (size_t i = 0; i < sectors_.size(); ++i) {
-    if (remaining < sector_areas_[i]) {
+    if (remaining < sector_cache_[i].area) {
       chosen = i;
       break;
     }
-    remaining -= sector_areas_[i];
+    remaining -= sector_cache_[i].area;
   }
   return apex_ + sectors_[chosen].Sample(u1, u2);
 }

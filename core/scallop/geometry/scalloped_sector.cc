@@ -9,15 +9,21 @@
 namespace scallop {
 
 double ScallopedSector::AreaUpTo(double angle) const {
-  return (far.HalfSquareIntegral(angle) - far.HalfSquareIntegral(angle_begin)) -
-         (near.HalfSquareIntegral(angle) - near.HalfSquareIntegral(angle_begin));
+  const Vec2 begin = UnitAt(angle_begin);
+  const Vec2 at = UnitAt(angle);
+  return (far.HalfSquareIntegralAlong(angle, at) -
+          far.HalfSquareIntegralAlong(angle_begin, begin)) -
+         (near.HalfSquareIntegralAlong(angle, at) -
+          near.HalfSquareIntegralAlong(angle_begin, begin));
 }
 
 double ScallopedSector::AngleAtArea(double area) const {
-  const double far_base = far.HalfSquareIntegral(angle_begin);
-  const double near_base = near.HalfSquareIntegral(angle_begin);
-  const double total = (far.HalfSquareIntegral(angle_end) - far_base) -
-                       (near.HalfSquareIntegral(angle_end) - near_base);
+  const Vec2 begin = UnitAt(angle_begin);
+  const Vec2 end = UnitAt(angle_end);
+  const double far_base = far.HalfSquareIntegralAlong(angle_begin, begin);
+  const double near_base = near.HalfSquareIntegralAlong(angle_begin, begin);
+  const double total = (far.HalfSquareIntegralAlong(angle_end, end) - far_base) -
+                       (near.HalfSquareIntegralAlong(angle_end, end) - near_base);
   if (!(area > 0.0)) return angle_begin;
   if (area >= total) return angle_end;
   double low = angle_begin;
@@ -26,8 +32,9 @@ double ScallopedSector::AngleAtArea(double area) const {
   double angle = angle_begin + (angle_end - angle_begin) * (area / total);
   const double epsilon = std::numeric_limits<double>::epsilon();
   for (int iteration = 0; iteration < 200; ++iteration) {
-    const double residual = ((far.HalfSquareIntegral(angle) - far_base) -
-                             (near.HalfSquareIntegral(angle) - near_base)) -
+    const Vec2 direction = UnitAt(angle);
+    const double residual = ((far.HalfSquareIntegralAlong(angle, direction) - far_base) -
+                             (near.HalfSquareIntegralAlong(angle, direction) - near_base)) -
                             area;
     if (residual == 0.0) return angle;
     if (residual < 0.0) {
@@ -35,7 +42,6 @@ double ScallopedSector::AngleAtArea(double area) const {
     } else {
       high = angle;
     }
-    const Vec2 direction = UnitAt(angle);
     const double g = near.DistanceAlong(direction);
     const double h = far.DistanceAlong(direction);
     const double slope = 0.5 * (h * h - g * g);
@@ -69,8 +75,7 @@ bool ScallopedSector::ContainsPolar(double angle, Vec2 direction, double distanc
 bool ScallopedSector::Contains(Vec2 relative) const {
   const double distance = Length(relative);
   if (distance == 0.0) return near.DistanceAt(angle_begin) <= 0.0;
-  return ContainsPolar(std::atan2(relative.y, relative.x), (1.0 / distance) * relative,
-                       distance);
+  return ContainsPolar(std::atan2(relative.y, relative.x), (1.0 / distance) * relative, distance);
 }
 
 }  // namespace scallop

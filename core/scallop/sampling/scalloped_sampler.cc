@@ -7,6 +7,7 @@
 // sampling it uniformly (A1) is dart throwing, run until no spot is left.
 #include "scallop/sampling/scalloped_sampler.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "scallop/geometry/scalloped_region.h"
@@ -104,11 +105,12 @@ class ScallopedSampler {
     if (!problem_.domain.torus) ClipToDomain(region);
     // Earlier points own what lies within r' of them; x's s-disk leaves their
     // neighbourhoods. Images are taken near x, then moved to each point's side.
+    nearby_.clear();
     grid_.ForEachNear(x, 2 * outer_radius_, [&](int32_t other, Vec2 q) {
       if (other == index) return;
       const double distance_squared = SquaredDistance(q, x);
-      if (!region.empty() && distance_squared < 4 * outer_radius_ * outer_radius_) {
-        region.SubtractDisk(q, outer_radius_);
+      if (distance_squared < 4 * outer_radius_ * outer_radius_) {
+        nearby_.push_back({distance_squared, other, q});
       }
       ScallopedRegion& theirs = neighbourhoods_[static_cast<size_t>(other)];
       const double reach = outer_radius_ + spacing_;
@@ -118,6 +120,17 @@ class ScallopedSampler {
         SetNeighbourhoodArea(other);
       }
     });
+    // Nearest first: their disks cover the most of the annulus, so the
+    // region shrinks (or empties) early and most later disks miss it cheaply.
+    // Ties are broken by index so the order is a pure function of the points.
+    std::sort(nearby_.begin(), nearby_.end(), [](const Nearby& a, const Nearby& b) {
+      return a.distance_squared != b.distance_squared ? a.distance_squared < b.distance_squared
+                                                      : a.index < b.index;
+    });
+    for (const Nearby& n : nearby_) {
+      if (region.empty()) break;
+      region.SubtractDisk(n.position, outer_radius_);
+    }
     neighbourhoods_.push_back(std::move(region));
     if (choice_ == CandidateChoice::kUniform) candidates_.push_back(index);
     SetNeighbourhoodArea(index);
@@ -145,6 +158,12 @@ class ScallopedSampler {
     }
   }
 
+  struct Nearby {
+    double distance_squared;
+    int32_t index;
+    Vec2 position;
+  };
+
   const SamplingProblem& problem_;
   const CandidateChoice choice_;
   Rng& rng_;
@@ -155,6 +174,7 @@ class ScallopedSampler {
   std::vector<Vec2> points_;
   size_t fixed_count_ = 0;
   std::vector<ScallopedRegion> neighbourhoods_;
+  std::vector<Nearby> nearby_;  // scratch of AddPoint
   AreaSumTree areas_;             // A1
   std::vector<int32_t> candidates_;  // A2
 };
