@@ -1,6 +1,7 @@
 // The CLI's subcommands. Each registers its options on the app and returns
 // the function that runs it; the function returns the process exit code:
-// 0 on success, 1 on a failure reported by a server, 2 on bad arguments.
+// 0 on success, 1 on a failure found (a contract violation or one reported
+// by a server), 2 on bad arguments.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -12,5 +13,11 @@ using CommandRunner = std::function<int()>;
 
 // `scallop generate`: a bounded-domain sampler's output.
 CommandRunner RegisterGenerate(CLI::App& app);
+
+// `scallop plane`: a rectangle of an infinite world, with point ids.
+CommandRunner RegisterPlane(CLI::App& app);
+
+// `scallop verify`: the contract checked on a rectangle of a world; exit 1 when it fails.
+CommandRunner RegisterVerify(CLI::App& app);
 
 }  // namespace scallop::cli

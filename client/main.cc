@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const std::vector<std::pair<std::string, scallop::cli::CommandRunner>> commands{
       {"generate", scallop::cli::RegisterGenerate(app)},
+      {"plane", scallop::cli::RegisterPlane(app)},
+      {"verify", scallop::cli::RegisterVerify(app)},
   };
   try {
     app.parse(argc, argv);

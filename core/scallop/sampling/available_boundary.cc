@@ -25,16 +25,34 @@ void AvailableBoundary::SubtractArc(Vec2 from, Vec2 to) {
 
 void AvailableBoundary::SubtractKeys(double begin, double end, Vec2 begin_direction,
                                      Vec2 end_direction) {
-  scratch_.clear();
-  for (const Range& r : ranges_) {
-    if (r.end <= begin || r.begin >= end) {
-      scratch_.push_back(r);
-      continue;
-    }
-    if (r.begin < begin) scratch_.push_back({r.begin, begin, r.begin_direction, begin_direction});
-    if (r.end > end) scratch_.push_back({end, r.end, end_direction, r.end_direction});
+  // In place: most cuts touch one range, so copying every range would
+  // dominate. Ranges are sorted and disjoint.
+  const size_t count = ranges_.size();
+  size_t first = 0;
+  while (first < count && ranges_[first].end <= begin) ++first;
+  if (first == count || ranges_[first].begin >= end) return;
+  Range& cut = ranges_[first];
+  if (cut.begin < begin && cut.end > end) {  // the cut falls inside one range: split it
+    const Range right{end, cut.end, end_direction, cut.end_direction};
+    cut.end = begin;
+    cut.end_direction = begin_direction;
+    ranges_.insert(ranges_.begin() + static_cast<std::ptrdiff_t>(first) + 1, right);
+    return;
   }
-  ranges_.swap(scratch_);
+  size_t erase_from = first;
+  if (cut.begin < begin) {  // keep the head of the first range
+    cut.end = begin;
+    cut.end_direction = begin_direction;
+    ++erase_from;
+  }
+  size_t last = erase_from;  // ranges wholly inside the cut end before `last`
+  while (last < count && ranges_[last].end <= end) ++last;
+  if (last < count && ranges_[last].begin < end) {  // trim the tail range
+    ranges_[last].begin = end;
+    ranges_[last].begin_direction = end_direction;
+  }
+  ranges_.erase(ranges_.begin() + static_cast<std::ptrdiff_t>(erase_from),
+                ranges_.begin() + static_cast<std::ptrdiff_t>(last));
 }
 
 void AvailableBoundary::Finish() {

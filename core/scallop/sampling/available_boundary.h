@@ -61,7 +61,6 @@ class AvailableBoundary {
   // directions for the pieces it cuts.
   void SubtractKeys(double begin, double end, Vec2 begin_direction, Vec2 end_direction);
   std::vector<Range> ranges_;
-  std::vector<Range> scratch_;
 };
 
 }  // namespace scallop

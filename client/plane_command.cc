@@ -1,0 +1,55 @@
+// `scallop plane`: prints one rectangle of an infinite world, each point with
+// its id, computed locally by a PlaneEngine.
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "commands.h"
+#include "point_output.h"
+#include "scallop/plane/region_layout.h"
+#include "world_options.h"
+
+namespace scallop::cli {
+namespace {
+
+struct PlaneArguments {
+  WorldArguments world;
+  PointFormat format = PointFormat::kCsv;
+  bool seams = false;
+};
+
+int RunPlane(const PlaneArguments& arguments) {
+  StatusOr<WorldQuery> query = ParseWorldQuery(arguments.world);
+  if (!query.ok()) {
+    std::cerr << "scallop plane: " << query.status().message() << '\n';
+    return 2;
+  }
+  PlaneEngine engine(query->engine);
+  // Points runs PlaneEngine::ValidateQuery first, so bad rectangles end here.
+  StatusOr<PlanePoints> points = engine.Points(query->world, query->rect);
+  if (!points.ok()) {
+    std::cerr << "scallop plane: " << points.status().message() << '\n';
+    return 2;
+  }
+  const double d = query->world.min_distance;
+  const SvgStyle style{.seam_spacing = arguments.seams ? RegionLayout(d).side() : 0.0,
+                       .dot_radius = d / 2};
+  WritePoints(std::cout, arguments.format, points->positions, points->ids, query->rect, style);
+  return 0;
+}
+
+}  // namespace
+
+CommandRunner RegisterPlane(CLI::App& app) {
+  auto arguments = std::make_shared<PlaneArguments>();
+  CLI::App* command = app.add_subcommand("plane", "Print a rectangle of an infinite world");
+  AddWorldOptions(*command, arguments->world);
+  std::map<std::string, PointFormat> formats(PointFormatNames().begin(), PointFormatNames().end());
+  command->add_option("--format", arguments->format, "csv, json, svg or none")
+      ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case))
+      ->option_text("csv|json|svg|none (default csv)");
+  command->add_flag("--seams", arguments->seams, "svg: draw the region seams (every 16 d)");
+  return [arguments] { return RunPlane(*arguments); };
+}
+
+}  // namespace scallop::cli

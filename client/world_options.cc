@@ -1,0 +1,58 @@
+// World options: registration with CLI11 and conversion to a checked World.
+#include "world_options.h"
+
+#include <charconv>
+
+#include "rect_option.h"
+
+namespace scallop::cli {
+
+// A bound so that a typo cannot start a million threads; beyond the machine's
+// cores more threads only add start-up cost.
+constexpr int kMaxThreads = 256;
+
+void AddWorldOptions(CLI::App& command, WorldArguments& arguments) {
+  command.add_option("--seed", arguments.seed, "World seed, 0..2^64-1")
+      ->type_name("UINT")
+      ->capture_default_str();
+  command.add_option("--min-distance", arguments.min_distance, "Minimum distance d between points")
+      ->capture_default_str();
+  command.add_option("--algorithm", arguments.algorithm, "a1, a2 or a3")->capture_default_str();
+  command.add_option("--density", arguments.density, "r'/2r in (1, 2], a1 and a2 only")
+      ->capture_default_str();
+  command.add_option("--threads", arguments.threads, "Threads generating regions")
+      ->capture_default_str();
+  command.add_option("--rect", arguments.rect, "Rectangle X0,Y0,X1,Y1 (half-open)")->required();
+}
+
+StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments) {
+  WorldQuery query;
+  const std::string& seed = arguments.seed;
+  uint64_t seed_value = 0;
+  const auto [end, error] = std::from_chars(seed.data(), seed.data() + seed.size(), seed_value);
+  if (seed.empty() || error != std::errc() || end != seed.data() + seed.size()) {
+    return InvalidArgument("--seed: must be an integer in 0..2^64-1, got '" + seed + "'");
+  }
+  // ParseAlgorithm also knows the bounded-only baselines; offer only what a world accepts.
+  StatusOr<Algorithm> algorithm = ParseAlgorithm(arguments.algorithm);
+  if (!algorithm.ok()) {
+    return InvalidArgument("world.algorithm: must be a1, a2 or a3, got '" + arguments.algorithm +
+                           "'");
+  }
+  query.world = {.seed = seed_value,
+                 .min_distance = arguments.min_distance,
+                 .algorithm = *algorithm,
+                 .density = arguments.density};
+  if (Status status = ValidateWorld(query.world); !status.ok()) return status;
+  StatusOr<Rect> rect = ParseRect(arguments.rect, "--rect");
+  if (!rect.ok()) return rect.status();
+  query.rect = *rect;
+  if (arguments.threads < 1 || arguments.threads > kMaxThreads) {
+    return InvalidArgument("--threads: must be in 1.." + std::to_string(kMaxThreads) + ", got " +
+                           std::to_string(arguments.threads));
+  }
+  query.engine.threads = arguments.threads;
+  return query;
+}
+
+}  // namespace scallop::cli

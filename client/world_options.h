@@ -1,0 +1,43 @@
+// The options that name a world and a rectangle of it (--seed, --min-distance,
+// --algorithm, --density, --threads, --rect), shared by every command that
+// queries the plane, locally or through a server.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+
+#include "scallop/base/status.h"
+#include "scallop/geometry/rect.h"
+#include "scallop/plane/plane_engine.h"
+#include "scallop/plane/world.h"
+
+namespace scallop::cli {
+
+// The options as typed; ParseWorldQuery turns them into checked values.
+struct WorldArguments {
+  std::string seed = "1";  // text: CLI11 would wrap "-1" and saturate 2^64 silently
+  double min_distance = 1.0;
+  std::string algorithm = "a3";
+  double density = 2.0;
+  int threads = 2;
+  std::string rect;
+};
+
+// Adds the world options to `command`, storing into `arguments`, which must
+// outlive parsing. --rect is required, so a missing one is a parse error.
+void AddWorldOptions(CLI::App& command, WorldArguments& arguments);
+
+struct WorldQuery {
+  World world;
+  Rect rect;
+  PlaneEngineOptions engine;
+};
+
+// Parses --seed, --algorithm and --rect and checks --threads and the world
+// (ValidateWorld). The rectangle's range and area are left to
+// PlaneEngine::ValidateQuery, which every query runs first, because the area
+// limit is the engine's. Errors name the option or the world field.
+StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments);
+
+}  // namespace scallop::cli

@@ -1,0 +1,146 @@
+#!/usr/bin/env bash
+# End-to-end checks of the `scallop` command line: exit codes, output formats,
+# and that `scallop plane` gives the same bits whatever the tiling, the thread
+# count or the process. Usage: tests/cli_test.sh path/to/scallop
+set -euo pipefail
+
+scallop=${1:?usage: cli_test.sh path/to/scallop}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0
+failed=0
+
+# Counters by assignment: ((n++)) returns 1 when n is 0, which set -e treats as failure.
+pass() { passed=$((passed + 1)); }
+fail() {
+  failed=$((failed + 1))
+  echo "FAIL: $*" >&2
+}
+
+# check DESCRIPTION COMMAND...: passes when the command succeeds.
+check() {
+  local what=$1
+  shift
+  if "$@"; then pass; else fail "$what"; fi
+}
+
+# run COMMAND...: runs scallop with stdout in $work/out, stderr in $work/err,
+# and its exit code in $status (without tripping set -e).
+run() {
+  status=0
+  "$scallop" "$@" >"$work/out" 2>"$work/err" || status=$?
+}
+
+# expect_exit CODE ARGS...: scallop ARGS must exit with CODE.
+expect_exit() {
+  local want=$1
+  shift
+  run "$@"
+  if [[ $status == "$want" ]]; then
+    pass
+  else
+    fail "scallop $*: exit $status, want $want: $(head -c 300 "$work/err")"
+  fi
+}
+
+# expect_bad_argument FIELD ARGS...: exit 2 and a message on stderr naming FIELD.
+expect_bad_argument() {
+  local field=$1
+  shift
+  expect_exit 2 "$@"
+  check "scallop $*: stderr names '$field'" grep -qF -- "$field" "$work/err"
+}
+
+# rows FILE ARGS...: the CSV rows (no header) of `scallop plane ARGS`, sorted, in FILE.
+rows() {
+  local file=$1
+  shift
+  run plane "$@"
+  if [[ $status != 0 ]]; then fail "scallop plane $*: exit $status: $(head -c 300 "$work/err")"; fi
+  tail -n +2 "$work/out" | sort >"$file"
+}
+
+# --- Exit codes and messages ------------------------------------------------
+
+expect_exit 0 generate --domain 0,0,20,20
+check "generate CSV header is x,y" test "$(head -n 1 "$work/out")" = "x,y"
+expect_exit 0 plane --rect -5,-5,5,5
+check "plane CSV header is id,x,y" test "$(head -n 1 "$work/out")" = "id,x,y"
+check "plane prints points" test "$(wc -l <"$work/out")" -gt 50
+expect_exit 0 verify --rect -5,-5,5,5
+
+for command in plane verify; do
+  expect_bad_argument "scallop $command: --rect" $command --rect nan,0,10,10
+  expect_bad_argument "scallop $command: --rect" $command --rect 10,0,0,10
+  expect_bad_argument "scallop $command: world.algorithm" $command --rect 0,0,10,10 --algorithm a4
+  expect_bad_argument "scallop $command: world.density" \
+    $command --rect 0,0,10,10 --algorithm a1 --density 2.5
+  expect_bad_argument "scallop $command: world.min_distance" \
+    $command --rect 0,0,10,10 --min-distance 0
+  # 2^32 d is 4294967296 for d = 1.
+  expect_bad_argument "scallop $command: rect.x0" $command --rect 5e9,0,5000000010,10
+  expect_bad_argument "scallop $command: --seed" $command --rect 0,0,10,10 --seed -1
+  expect_bad_argument "scallop $command: --threads" $command --rect 0,0,10,10 --threads 0
+  expect_bad_argument "--rect" $command
+done
+# verify's 2 d halo crosses the limit that plane's rectangle stays within.
+expect_exit 0 plane --rect 4294967290,0,4294967295,10
+expect_bad_argument "halo" verify --rect 4294967290,0,4294967295,10
+
+# --- Determinism: one rectangle = its 2x2 tiling, separate processes -------
+
+# A 48 d square cut off the seams (every 16 d): every tile straddles some.
+whole=-24,-24,24,24
+tiles=("-24,-24,5,-3" "5,-24,24,-3" "-24,-3,5,24" "5,-3,24,24")
+for algorithm in a1 a2 a3; do
+  world=(--algorithm "$algorithm" --seed 7)
+  if [[ $algorithm == a2 ]]; then world+=(--density 1.5); fi
+  rows "$work/whole" "${world[@]}" --threads 2 --rect "$whole"
+  rows "$work/whole1" "${world[@]}" --threads 1 --rect "$whole"
+  : >"$work/tiled"
+  for tile in "${tiles[@]}"; do
+    rows "$work/tile" "${world[@]}" --threads 1 --rect "$tile"
+    cat "$work/tile" >>"$work/tiled"
+  done
+  sort -o "$work/tiled" "$work/tiled"
+  check "$algorithm: the whole has points" test -s "$work/whole"
+  check "$algorithm: tiles share no id" test -z "$(cut -d, -f1 "$work/tiled" | sort | uniq -d)"
+  check "$algorithm: tiles (1 thread) = whole (2 threads)" cmp -s "$work/tiled" "$work/whole"
+  check "$algorithm: whole, 1 thread = 2 threads" cmp -s "$work/whole1" "$work/whole"
+done
+
+# --- Verify across seams, every algorithm ----------------------------------
+
+for algorithm in a1 a2 a3; do
+  expect_exit 0 verify --algorithm "$algorithm" --seed 3 --rect -20,-20,20,20
+  check "verify $algorithm: reports pass" grep -qE '^result +pass$' "$work/out"
+  check "verify $algorithm: judges pairs across seams" \
+    grep -qE '^pairs across seams +[1-9][0-9]*$' "$work/out"
+  expect_exit 0 verify --algorithm "$algorithm" --seed 3 --rect -20,-20,20,20 --json
+  check "verify $algorithm --json: passed" grep -qF '"passed":true' "$work/out"
+done
+# Far from the origin and with an awkward d, where rounding eats into the margin.
+expect_exit 0 verify --min-distance 0.37 --seed 42 --rect 1000000,-1000015,1000012,-999999
+
+# --- Formats ---------------------------------------------------------------
+
+# grep finds nothing in broken output: `|| true` lets the check report it, not set -e.
+rows "$work/csv" --rect 0,0,30,20
+expect_exit 0 plane --rect 0,0,30,20 --format json
+count=$(grep -oE '"count":[0-9]+' "$work/out" | cut -d: -f2 || true)
+check "plane JSON count = CSV rows" test "$count" = "$(wc -l <"$work/csv")"
+expect_exit 0 plane --rect 0,0,30,20 --format none
+check "plane --format none prints nothing" test ! -s "$work/out"
+
+rows "$work/csv" --rect -20,-20,20,20
+expect_exit 0 plane --rect -20,-20,20,20 --format svg --seams
+check "SVG starts with <svg" grep -q '^<svg ' <(head -n 1 "$work/out")
+check "SVG ends with </svg>" test "$(tail -n 1 "$work/out")" = "</svg>"
+check "SVG --seams draws lines" grep -q '<line ' "$work/out"
+circles=$(grep -c '<circle ' "$work/out" || true)
+check "SVG draws every point" test "$circles" = "$(wc -l <"$work/csv")"
+expect_exit 0 plane --rect -20,-20,20,20 --format svg
+check "SVG without --seams has no lines" test "$(grep -c '<line ' "$work/out" || true)" = 0
+
+echo "$passed passed, $failed failed"
+[[ $failed == 0 ]]
