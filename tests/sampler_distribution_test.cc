@@ -1,0 +1,334 @@
+// How the maximal samplers' output is distributed, over many seeds on a 40 d x 40 d torus: A1
+// against exhaustive dart throwing (the paper's claim) and against a brute-force oracle of A1's
+// own definition, by normalised radius and pair distance g(r); A2 and A3 densities in bands.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "scallop/analysis/point_statistics.h"
+#include "scallop/random/rng.h"
+#include "scallop/sampling/sampler.h"
+
+namespace scallop {
+namespace {
+
+// 40 d x 40 d holds about 1100 points at dart throwing's density: big enough that the torus
+// barely shifts rho (finite-size effects are well under the spread between seeds), small
+// enough that 16 seeds of every method stay within a minute even under AddressSanitizer.
+constexpr double kD = 1.0;
+constexpr Domain kTorus{{-20.0, -20.0, 20.0, 20.0}, true};
+// The oracle's buckets and squares assume a square torus.
+static_assert(kTorus.rect.Width() == kTorus.rect.Height());
+constexpr int kSeeds = 16;
+// g(r) over [0, 3 d) in bins of 0.1 d: out to the third neighbour shell, fine enough to see the
+// contact peak at d.
+constexpr double kHistogramReach = 3.0 * kD;
+constexpr int kBins = 30;
+
+// Agreement thresholds in standard errors of the difference of two means over kSeeds seeds.
+// Per seed, rho and each bin of g are averages over ~1100 points, so close to normal, and the
+// seeds are independent; the standard error of a difference of means is
+// sqrt(s_a^2 / n + s_b^2 / n) with s the per-seed spread. Because s is itself estimated from
+// n = 16 seeds, the ratio follows Welch's t with about 30 degrees of freedom, not a normal.
+//  - rho: one comparison; P(|t_30| > 4) = 4e-4, so an honest pair essentially never fails.
+//  - g: 30 bins compared at once (Bonferroni); P(|t_30| > 5) = 2.3e-5 per bin, under 1e-3 for
+//    all 30, so the whole-histogram check is as strict as the rho check.
+// The seeds are fixed, so a pass or a fail is reproducible; these numbers say how unlucky a
+// fixed seed set would have to be to fail on samplers that agree.
+constexpr double kRhoZ = 4.0;
+constexpr double kBinZ = 5.0;
+
+double Mean(const std::vector<double>& values) {
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
+}
+
+// Sample standard deviation (n - 1 in the denominator).
+double Spread(const std::vector<double>& values) {
+  const double mean = Mean(values);
+  double sum = 0.0;
+  for (double v : values) sum += (v - mean) * (v - mean);
+  return std::sqrt(sum / static_cast<double>(values.size() - 1));
+}
+
+// Per-seed measurements of one method.
+struct Measured {
+  std::string name;
+  std::vector<double> rho;             // one per seed
+  std::vector<std::vector<double>> g;  // g[bin][seed]
+  std::vector<double> points;          // point count per seed
+};
+
+// Runs `sample` for kSeeds fixed seeds and records rho and g(r) of each output.
+Measured Measure(const std::string& name,
+                 const std::function<std::vector<Vec2>(uint64_t seed)>& sample) {
+  Measured measured;
+  measured.name = name;
+  measured.g.assign(kBins, {});
+  for (int k = 0; k < kSeeds; ++k) {
+    // The same seeds for every method: Sample() hashes the seed with the algorithm, so the
+    // streams are independent anyway.
+    const std::vector<Vec2> points = sample(HashWords({0xd157, static_cast<uint64_t>(k)}));
+    const StatusOr<double> rho =
+        NormalisedRadius(static_cast<int64_t>(points.size()), kTorus.rect.Area(), kD);
+    EXPECT_TRUE(rho.ok()) << rho.status().message();
+    const StatusOr<PairDistanceHistogram> histogram =
+        HistogramPairDistances(points, kTorus, kHistogramReach, kBins);
+    EXPECT_TRUE(histogram.ok()) << histogram.status().message();
+    if (!rho.ok() || !histogram.ok()) continue;
+    measured.rho.push_back(*rho);
+    measured.points.push_back(static_cast<double>(points.size()));
+    for (int b = 0; b < kBins; ++b) measured.g[b].push_back(histogram->radial_distribution[b]);
+  }
+  std::printf("%-22s rho mean %.5f spread %.5f (standard error %.5f) over %d seeds, %.0f points\n",
+              name.c_str(), Mean(measured.rho), Spread(measured.rho),
+              Spread(measured.rho) / std::sqrt(static_cast<double>(measured.rho.size())),
+              static_cast<int>(measured.rho.size()), Mean(measured.points));
+  return measured;
+}
+
+Measured MeasureSampler(Algorithm algorithm, double density, bool exhaustive = false) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s%s density %.2f",
+                std::string(AlgorithmName(algorithm)).c_str(), exhaustive ? "-exhaustive" : "",
+                density);
+  return Measure(name, [&](uint64_t seed) {
+    SamplerOptions options;
+    options.algorithm = algorithm;
+    options.density = density;
+    options.dart_exhaustive = exhaustive;
+    options.domain = kTorus;
+    options.min_distance = kD;
+    options.seed = seed;
+    StatusOr<std::vector<Vec2>> points = Sample(options);
+    EXPECT_TRUE(points.ok()) << points.status().message();
+    return points.ok() ? std::move(*points) : std::vector<Vec2>{};
+  });
+}
+
+// The difference of two means in standard errors of that difference (Welch). Exactly equal
+// constant series (g below d is 0 for everyone) count as 0.
+double ZScore(const std::vector<double>& a, const std::vector<double>& b) {
+  const double difference = Mean(a) - Mean(b);
+  const double standard_error = std::sqrt(Spread(a) * Spread(a) / static_cast<double>(a.size()) +
+                                          Spread(b) * Spread(b) / static_cast<double>(b.size()));
+  if (difference == 0.0) return 0.0;
+  return standard_error > 0.0 ? std::abs(difference) / standard_error : INFINITY;
+}
+
+bool RhoAgrees(const Measured& a, const Measured& b) {
+  const double z = ZScore(a.rho, b.rho);
+  std::printf("rho %s vs %s: difference %+.5f, %.2f standard errors (limit %.0f)\n", a.name.c_str(),
+              b.name.c_str(), Mean(a.rho) - Mean(b.rho), z, kRhoZ);
+  return z <= kRhoZ;
+}
+
+// True when every bin of the seed-averaged g(r) agrees within kBinZ standard errors.
+bool HistogramsAgree(const Measured& a, const Measured& b) {
+  double worst = 0.0;
+  int worst_bin = 0;
+  for (int bin = 0; bin < kBins; ++bin) {
+    const double z = ZScore(a.g[bin], b.g[bin]);
+    if (z > worst) {
+      worst = z;
+      worst_bin = bin;
+    }
+  }
+  const double r = (worst_bin + 0.5) * kHistogramReach / kBins;
+  std::printf(
+      "g(r) %s vs %s: worst bin r = %.2f d, g %.4f vs %.4f, %.2f standard errors "
+      "(limit %.0f)\n",
+      a.name.c_str(), b.name.c_str(), r, Mean(a.g[worst_bin]), Mean(b.g[worst_bin]), worst, kBinZ);
+  return worst <= kBinZ;
+}
+
+// Squared minimum-image distance on kTorus.
+double TorusSquaredDistance(Vec2 p, Vec2 q) {
+  double dx = std::abs(p.x - q.x), dy = std::abs(p.y - q.y);
+  dx = std::min(dx, kTorus.rect.Width() - dx);
+  dy = std::min(dy, kTorus.rect.Height() - dy);
+  return dx * dx + dy * dy;
+}
+
+// Brute-force oracle of A1's definition, sharing no code with the samplers: every new point is
+// uniform over the spots at least d from every point and (once there is a point) closer than
+// `reach` = density * d to one of them, until no such spot is left. With reach = 2 d the
+// paper claims this is dart throwing; it is not quite (see A1MatchesDartThrowing).
+// To finish, darts go to uniformly chosen squares from a list that covers every spot still
+// available: a square leaves the list once one d-disk holds its four corners (a disk is
+// convex), and all squares halve when a whole pass keeps no dart. As the squares in the list
+// always have equal size, a dart is uniform over their union, so a kept dart is uniform over
+// the allowed spots. Neighbours come from buckets 2 d wide (3 x 3 buckets cover any reach <= 2 d).
+std::vector<Vec2> RestrictedDartThrowing(double reach, Rng& rng) {
+  const Rect& rect = kTorus.rect;
+  const auto buckets_across = static_cast<int>(rect.Width() / (2 * kD));
+  const double bucket = rect.Width() / buckets_across;
+  std::vector<std::vector<Vec2>> buckets(static_cast<size_t>(buckets_across * buckets_across));
+  const auto bucket_of = [&](Vec2 p, int dx, int dy) {
+    const int column = static_cast<int>(std::floor((p.x - rect.x0) / bucket));
+    const int row = static_cast<int>(std::floor((p.y - rect.y0) / bucket));
+    const auto wrap = [&](int i) {
+      return ((i % buckets_across) + buckets_across) % buckets_across;
+    };
+    return static_cast<size_t>(wrap(row + dy) * buckets_across + wrap(column + dx));
+  };
+  const auto for_each_near = [&](Vec2 p, const auto& visit) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        for (const Vec2& q : buckets[bucket_of(p, dx, dy)]) visit(q);
+      }
+    }
+  };
+  const auto wrap_into = [&](Vec2 p) {
+    const auto wrap = [](double v, double lo, double side) {
+      const double w = v >= lo + side ? v - side : v;
+      return w < lo + side ? w : lo;
+    };
+    return Vec2{wrap(p.x, rect.x0, rect.Width()), wrap(p.y, rect.y0, rect.Height())};
+  };
+
+  struct Square {
+    double x, y;  // lower-left corner; may stick out past x1 / y1 and wrap
+  };
+  const auto squares_across = static_cast<int>(std::ceil(rect.Width() / (0.5 * kD)));
+  double side = rect.Width() / squares_across;
+  std::vector<Square> squares;
+  for (int row = 0; row < squares_across; ++row) {
+    for (int column = 0; column < squares_across; ++column) {
+      squares.push_back({rect.x0 + column * side, rect.y0 + row * side});
+    }
+  }
+  const auto covered = [&](const Square& s) {
+    const Vec2 corners[4] = {
+        {s.x, s.y}, {s.x + side, s.y}, {s.x, s.y + side}, {s.x + side, s.y + side}};
+    bool any = false;
+    for_each_near(wrap_into({s.x, s.y}), [&](Vec2 q) {
+      bool all = true;
+      for (const Vec2& corner : corners) all = all && TorusSquaredDistance(corner, q) < kD * kD;
+      any = any || all;
+    });
+    return any;
+  };
+
+  std::vector<Vec2> points;
+  while (!squares.empty() && side > 1e-9 * kD) {
+    const size_t darts = squares.size();
+    bool kept_any = false;
+    for (size_t k = 0; k < darts && !squares.empty(); ++k) {
+      const size_t pick = rng.Below(squares.size());
+      const Square s = squares[pick];
+      const double x = s.x + rng.Uniform() * side;
+      const Vec2 dart = wrap_into({x, s.y + rng.Uniform() * side});
+      double nearest = INFINITY;
+      for_each_near(dart,
+                    [&](Vec2 q) { nearest = std::min(nearest, TorusSquaredDistance(dart, q)); });
+      if (nearest >= kD * kD && (points.empty() || nearest < reach * reach)) {
+        points.push_back(dart);
+        buckets[bucket_of(dart, 0, 0)].push_back(dart);
+        kept_any = true;
+      }
+      if (covered(s)) {
+        squares[pick] = squares.back();
+        squares.pop_back();
+      }
+    }
+    if (kept_any) continue;
+    // Halve in a canonical order, so the output depends only on the seed.
+    std::sort(squares.begin(), squares.end(),
+              [](const Square& a, const Square& b) { return a.y != b.y ? a.y < b.y : a.x < b.x; });
+    side *= 0.5;
+    std::vector<Square> halves;
+    for (const Square& s : squares) {
+      for (int child = 0; child < 4; ++child) {
+        const Square c{s.x + (child & 1) * side, s.y + (child >> 1) * side};
+        if (!covered(c)) halves.push_back(c);
+      }
+    }
+    squares.swap(halves);
+  }
+  return points;
+}
+
+Measured MeasureOracle(double density) {
+  char name[64];
+  std::snprintf(name, sizeof name, "oracle reach %.2f d", density);
+  return Measure(name, [&](uint64_t seed) {
+    Rng rng(HashWords({seed, 0x0AC1E}));
+    return RestrictedDartThrowing(density * kD, rng);
+  });
+}
+
+// The paper says A1 (density 2) is distributed as dart throwing. At this test's resolution
+// (about 0.004 in rho, 4 standard errors of a difference over 16 seeds) it is. It is not
+// exactly: over 200 seeds of each on this torus A1 gives rho 0.7754 and exhaustive dart throwing
+// 0.7769 (spreads 0.0028, 0.0026; a gap of 5.7 standard errors), and g(r) near 1.95 d is 0.942
+// against 0.900 (10 standard errors). The oracle of A1's definition gives 0.7758 and matches
+// A1 bin by bin, so the gap is the algorithm's, not the implementation's: A1 grows the set from
+// its frontier, while dart throwing also lands far from it. Here the expected gap is about 1.7
+// standard errors, so with other seeds this check could fail about 1 time in 100.
+TEST(SamplerDistributionTest, A1MatchesDartThrowing) {
+  const Measured a1 = MeasureSampler(Algorithm::kA1, 2.0);
+  const Measured dart = MeasureSampler(Algorithm::kDartThrowing, 2.0, /*exhaustive=*/true);
+  // Dart throwing run to exhaustion jams at coverage 0.5471, rho = sqrt(2 sqrt(3) / pi * 0.5471).
+  EXPECT_NEAR(Mean(dart.rho), 0.7767, 0.004);
+  EXPECT_NEAR(Mean(a1.rho), 0.7767, 0.004);
+  EXPECT_TRUE(RhoAgrees(a1, dart));
+  EXPECT_TRUE(HistogramsAgree(a1, dart));
+}
+
+// A1 at two densities against the brute-force oracle of its definition (uniform over the
+// available spots within r' of the set): the tight check of A1's scalloped-sector machinery.
+TEST(SamplerDistributionTest, A1MatchesBruteForceOracle) {
+  for (const double density : {2.0, 1.5, 1.1}) {
+    const Measured a1 = MeasureSampler(Algorithm::kA1, density);
+    const Measured oracle = MeasureOracle(density);
+    EXPECT_TRUE(RhoAgrees(a1, oracle)) << density;
+    EXPECT_TRUE(HistogramsAgree(a1, oracle)) << density;
+  }
+}
+
+// A2, A3 and the density parameter. Bands are the measured means widened by many standard
+// errors, wide enough to hold under any honest change of random stream. Means over 200 seeds:
+// A3 0.8597; A2 0.7905 (density 2), 0.7750 (1.5), 0.8258 (1.1); A1 0.7754, 0.7751, 0.8125.
+// So r' tunes density as the paper says only below about 1.5 d: from 1.5 to 2 A1's rho is flat
+// (the oracle agrees: 0.7750 and 0.7758) and A2's grows with r'. The ordering is asserted
+// between 1.1 and 1.5 only.
+TEST(SamplerDistributionTest, DensityParameterA2AndA3) {
+  const Measured a3 = MeasureSampler(Algorithm::kA3, 2.0);
+  // The paper authors' boundary sampler gives about 0.86, denser than dart throwing.
+  EXPECT_GE(Mean(a3.rho), 0.83);
+  EXPECT_LE(Mean(a3.rho), 0.89);
+
+  const Measured a2 = MeasureSampler(Algorithm::kA2, 2.0);
+  // Choosing candidates uniformly rather than by area gives small leftover neighbourhoods,
+  // which lie in gaps between points, more weight: A2 is somewhat denser than dart throwing.
+  EXPECT_GE(Mean(a2.rho), 0.78);
+  EXPECT_LE(Mean(a2.rho), 0.80);
+
+  for (const Algorithm algorithm : {Algorithm::kA1, Algorithm::kA2}) {
+    const Measured tight = MeasureSampler(algorithm, 1.1);
+    const Measured loose = MeasureSampler(algorithm, 1.5);
+    // Points placed within 1.1 d of an existing one pack much closer (about 0.81 vs 0.77).
+    EXPECT_GT(Mean(tight.rho) - Mean(loose.rho), 0.02);
+    EXPECT_GT(ZScore(tight.rho, loose.rho), kRhoZ);
+  }
+}
+
+// The checks can fail: Bridson (30 tries per active point, rho about 0.73, not maximal) must be
+// told apart from dart throwing by both the rho check and the g(r) check.
+TEST(SamplerDistributionTest, ComparisonCatchesBridson) {
+  const Measured bridson = MeasureSampler(Algorithm::kBridson, 2.0);
+  const Measured dart = MeasureSampler(Algorithm::kDartThrowing, 2.0, /*exhaustive=*/true);
+  EXPECT_NEAR(Mean(bridson.rho), 0.73, 0.015);
+  EXPECT_FALSE(RhoAgrees(bridson, dart));
+  EXPECT_FALSE(HistogramsAgree(bridson, dart));
+}
+
+}  // namespace
+}  // namespace scallop
