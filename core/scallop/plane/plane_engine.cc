@@ -45,6 +45,18 @@ Status PlaneEngine::ValidateQuery(const World& world, const Rect& rect) const {
     return InvalidArgument("rect: area must be at most " + std::to_string(options_.max_query_area) +
                            " * min_distance^2");
   }
+  // Cost follows the regions a query overlaps, not its area: a thin sliver
+  // can overlap millions. Allow the regions of the largest square query.
+  const RegionLayout layout(world.min_distance);
+  const double columns = static_cast<double>(layout.IndexOf(rect.x1) - layout.IndexOf(rect.x0) + 1);
+  const double rows = static_cast<double>(layout.IndexOf(rect.y1) - layout.IndexOf(rect.y0) + 1);
+  const double side_in_regions = std::sqrt(options_.max_query_area) / kRegionSideInD + 2;
+  if (columns * rows > side_in_regions * side_in_regions) {
+    return InvalidArgument("rect: overlaps " + std::to_string(columns * rows) +
+                           " regions of 16 * min_distance; the limit is " +
+                           std::to_string(side_in_regions * side_in_regions) +
+                           " (a long thin rectangle costs as much as its regions)");
+  }
   return Status::Ok();
 }
 
@@ -166,11 +178,11 @@ StatusOr<int64_t> PlaneEngine::Count(const World& world, const Rect& rect) {
 
 StatusOr<RegionHandle> PlaneEngine::Region(const World& world, RegionKey key) {
   if (Status status = ValidateWorld(world); !status.ok()) return status;
-  const RegionLayout layout(world.min_distance);
-  const Rect rect = layout.RegionRect(key);
-  const double limit = layout.precision_limit();
-  if (!(std::abs(rect.x0) <= limit && std::abs(rect.x1) <= limit && std::abs(rect.y0) <= limit &&
-        std::abs(rect.y1) <= limit)) {
+  // Regions -2^28 .. 2^28 - 1 tile exactly [-2^32 d, 2^32 d); checked on the
+  // key, because the rectangle of an extreme key would overflow.
+  constexpr auto kRegionsPerHalfAxis = static_cast<int64_t>(kPrecisionRangeInD / kRegionSideInD);
+  if (key.i < -kRegionsPerHalfAxis || key.i >= kRegionsPerHalfAxis ||
+      key.j < -kRegionsPerHalfAxis || key.j >= kRegionsPerHalfAxis) {
     return OutOfRange("region: lies beyond the precision range of 2^32 * min_distance");
   }
   return Resolve(world, {key}).front();

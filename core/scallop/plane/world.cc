@@ -11,9 +11,9 @@ namespace scallop {
 
 Status ValidateWorld(const World& world) {
   const double d = world.min_distance;
-  // 2^32 d must stay a normal, finite double with room for region arithmetic.
-  if (!std::isfinite(d) || d <= 0 || d < 0x1.0p-900 || d > 0x1.0p900) {
-    return InvalidArgument("world.min_distance: must be finite, > 0 and within 2^-900..2^900");
+  if (!(d >= kSmallestMinDistance && d <= kLargestMinDistance)) {
+    return InvalidArgument("world.min_distance: must be within [2^-256, 2^256], got " +
+                           std::to_string(d));
   }
   if (world.algorithm != Algorithm::kA1 && world.algorithm != Algorithm::kA2 &&
       world.algorithm != Algorithm::kA3) {

@@ -27,8 +27,8 @@ struct World {
   friend bool operator==(const World&, const World&) = default;
 };
 
-// INVALID_ARGUMENT naming the field: d not finite or <= 0, or so small or
-// large that the precision range overflows; an algorithm other than a1, a2,
+// INVALID_ARGUMENT naming the field: d outside [2^-256, 2^256] (where squares
+// of coordinates stay normal doubles); an algorithm other than a1, a2,
 // a3; density outside (1, 2] for a1 and a2; a generator version this build
 // does not have.
 Status ValidateWorld(const World& world);

@@ -55,8 +55,9 @@ bool UsesDensity(Algorithm algorithm) {
 Status ValidateSamplerOptions(const SamplerOptions& options) {
   const Rect& r = options.domain.rect;
   const double d = options.min_distance;
-  if (!std::isfinite(d) || d <= 0) {
-    return InvalidArgument("min_distance: must be finite and > 0, got " + std::to_string(d));
+  if (!(d >= kSmallestMinDistance && d <= kLargestMinDistance)) {
+    return InvalidArgument("min_distance: must be within [2^-256, 2^256], got " +
+                           std::to_string(d));
   }
   const std::pair<const char*, double> corners[] = {
       {"domain.x0", r.x0}, {"domain.y0", r.y0}, {"domain.x1", r.x1}, {"domain.y1", r.y1}};
