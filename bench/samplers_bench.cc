@@ -1,12 +1,14 @@
 // The paper's Table 1, today: every sampler at about 1k to 1M points in a
 // rectangle, as points per second. Each run also times our Bridson on the
-// same area, so every figure can be read as a ratio from one run.
+// same area, so every figure can be read as a ratio from one run, and the
+// peak heap bytes per point.
 //
 //   build/bench/samplers_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
+#include "allocation_counter.h"
 #include "scallop/sampling/sampler.h"
 
 namespace scallop {
@@ -28,13 +30,20 @@ SamplerOptions OptionsFor(Algorithm algorithm, int64_t points) {
 void BM_Sampler(benchmark::State& state, Algorithm algorithm) {
   SamplerOptions options = OptionsFor(algorithm, state.range(0));
   int64_t produced = 0;
+  long long peak_bytes = 0;
   for (auto _ : state) {
+    const long long baseline = bench::HeapBytes();
+    bench::ResetHeapPeak();
     auto points = Sample(options);
+    peak_bytes = bench::HeapPeakSince(baseline);
     produced = static_cast<int64_t>(points->size());
     benchmark::DoNotOptimize(points->data());
     ++options.seed;
   }
   state.counters["points"] = static_cast<double>(produced);
+  // Peak heap while sampling, output included, per point produced.
+  state.counters["peak_bytes_per_point"] =
+      static_cast<double>(peak_bytes) / static_cast<double>(produced);
   state.counters["points_per_second"] =
       benchmark::Counter(static_cast<double>(produced), benchmark::Counter::kIsIterationInvariantRate);
 }

@@ -303,7 +303,7 @@ TEST(SamplerMaximalityTest, FarFromTheOriginStillMaximal) {
 // empty circle of 1 + 4.9e-8 d (1 run in about 3000 random A1/A2 runs of ~300 points).
 // Here: a neighbourhood annulus (s, 2 d) minus three s-disks whose common gap is a spot 3e-8 d
 // beyond each of them; the spot is available, so the neighbourhood must still contain it.
-TEST(SamplerMaximalityTest, DISABLED_NeighbourhoodKeepsAGapWiderThanTheTolerance) {
+TEST(SamplerMaximalityTest, NeighbourhoodKeepsAGapWiderThanTheTolerance) {
   const double d = 1.0;
   const double s = SpacingFor(d, 4 * d);
   for (const double beyond : {1e-6, 1e-7, 3e-8}) {

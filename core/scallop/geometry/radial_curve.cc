@@ -4,6 +4,7 @@
 #include "scallop/geometry/radial_curve.h"
 
 #include <cmath>
+#include <limits>
 
 namespace scallop {
 
@@ -13,9 +14,6 @@ RadialCurve RadialCurve::Arc(Vec2 centre, double radius, int sign) {
   curve.vector_ = centre;
   curve.scalar_ = radius;
   curve.sign_ = static_cast<int8_t>(sign < 0 ? -1 : 1);
-  curve.centre_distance_ = std::sqrt(SquaredLength(centre));  // std::hypot is slow
-  // atan2(0, 0) = 0: for a circle centred on the apex gamma is arbitrary and cancels.
-  curve.polar_angle_ = std::atan2(centre.y, centre.x);
   return curve;
 }
 
@@ -28,21 +26,36 @@ RadialCurve RadialCurve::Line(Vec2 unit_normal, double offset) {
   }
   curve.vector_ = unit_normal;
   curve.scalar_ = offset;
-  curve.polar_angle_ = std::atan2(unit_normal.y, unit_normal.x);
   return curve;
 }
 
+double RadialCurve::MinDistance() const {
+  if (kind_ == Kind::kLine) return scalar_;
+  return std::fabs(std::sqrt(SquaredLength(vector_)) - scalar_);
+}
+
+double RadialCurve::MaxDistance() const {
+  if (kind_ == Kind::kLine) return std::numeric_limits<double>::infinity();
+  return std::sqrt(SquaredLength(vector_)) + scalar_;
+}
+
 double RadialCurve::HalfSquareIntegralAlong(double angle, Vec2 direction) const {
+  if (kind_ == Kind::kLine) return HalfSquareIntegralRemainder(direction);
+  // atan2(0, 0) = 0: for a circle centred on the apex gamma is arbitrary and cancels.
+  const double polar_angle = std::atan2(vector_.y, vector_.x);
+  return LinearCoefficient() * (angle - polar_angle) + HalfSquareIntegralRemainder(direction);
+}
+
+double RadialCurve::HalfSquareIntegralRemainder(Vec2 direction) const {
   if (kind_ == Kind::kLine) {
     // tan(t - phi) = sin / cos of the angle between the normal and the ray.
     return 0.5 * scalar_ * scalar_ * Cross(vector_, direction) / Dot(vector_, direction);
   }
-  const double u = angle - polar_angle_;
   const double radius_squared = scalar_ * scalar_;
   const double along = Dot(vector_, direction);     // d cos u
   const double across = Cross(vector_, direction);  // w = d sin u
   // (d^2 / 2) sin 2u = (d cos u)(d sin u).
-  double integral = radius_squared * u + along * across;
+  double remainder = along * across;
   if (scalar_ > 0.0 && across != 0.0) {
     // w sqrt(R^2 - w^2) + R^2 asin(w / R) written as w S + R^2 atan(w / S) with S = sqrt((R - w)
     // (R + w)): near the tangent rays (|w| -> R) asin and R^2 - w^2 each lose half the digits,
@@ -54,9 +67,9 @@ double RadialCurve::HalfSquareIntegralAlong(double angle, Vec2 direction) const 
     const double root = std::sqrt((scalar_ - w) * (scalar_ + w));
     // atan(w / S) equals atan2(w, S) for S >= 0 (S = 0 gives +-inf -> +-pi/2) and is cheaper;
     // the division's rounding moves the result by at most half an ulp of pi/2.
-    integral += sign_ * (w * root + radius_squared * std::atan(w / root));
+    remainder += sign_ * (w * root + radius_squared * std::atan(w / root));
   }
-  return 0.5 * integral;
+  return 0.5 * remainder;
 }
 
 namespace {

@@ -17,14 +17,15 @@ class RadialCurve {
   // `centre`): sign +1 the farther crossing, -1 the nearer one, so that
   //   rho(t) = d cos(t - gamma) + sign * sqrt(radius^2 - (d sin(t - gamma))^2)
   // with (d, gamma) the polar coordinates of `centre`. A circle centred on the apex is an arc with
-  // sign +1 and rho = radius. Cost: one atan2 and one sqrt.
+  // sign +1 and rho = radius. O(1), no trigonometry (the polar angle gamma is never stored: it
+  // only shifts the antiderivative by a constant, see HalfSquareIntegralRemainder).
   // REQUIRES: radius >= 0, sign in {-1, +1}, finite inputs.
   static RadialCurve Arc(Vec2 centre, double radius, int sign);
 
   // The line {x : Dot(unit_normal, x) = offset}, x relative to the apex:
   //   rho(t) = offset / cos(t - phi), phi the angle of unit_normal,
   // meaningful where positive. Stored normalised to offset >= 0 (negating both when offset < 0
-  // describes the same line), so equal lines compare equal. Cost: one atan2.
+  // describes the same line), so equal lines compare equal. O(1), no trigonometry.
   // REQUIRES: |unit_normal| = 1 to rounding, finite inputs.
   static RadialCurve Line(Vec2 unit_normal, double offset);
 
@@ -75,8 +76,23 @@ class RadialCurve {
   }
   // As HalfSquareIntegral, given also direction = UnitAt(angle) (to rounding), which callers often
   // have already: then no sin/cos is needed (sin u, cos u come from dot and cross products), only
-  // one atan for arcs not centred on the apex. REQUIRES: |direction| = 1, its angle == angle.
+  // one atan for arcs not centred on the apex (plus one atan2 for gamma, which area differences
+  // avoid through the split below). REQUIRES: |direction| = 1, its angle == angle.
   double HalfSquareIntegralAlong(double angle, Vec2 direction) const;
+
+  // The antiderivative split as F(t) = LinearCoefficient() * (t - gamma) + Remainder(direction):
+  // arc: coefficient R^2 / 2, remainder ((d^2 / 2) sin 2u + sign (w S + R^2 atan(w / S))) / 2;
+  // line: coefficient 0, remainder (c^2 / 2) tan(t - phi). Differences F(t1) - F(t0) then need
+  // no gamma: LinearCoefficient() * (t1 - t0) + Remainder(e1) - Remainder(e0). The remainder
+  // costs one sqrt and one atan (arcs not centred on the apex), a division (lines).
+  // REQUIRES: |direction| = 1.
+  double LinearCoefficient() const { return kind_ == Kind::kLine ? 0.0 : 0.5 * scalar_ * scalar_; }
+  double HalfSquareIntegralRemainder(Vec2 direction) const;
+
+  // Bounds on rho over any ray where the curve is defined: MinDistance() <= rho <= MaxDistance().
+  // Arc: |d - R| and d + R; line: offset and +inf. O(1), one sqrt for arcs.
+  double MinDistance() const;
+  double MaxDistance() const;
 
   friend bool operator==(const RadialCurve& a, const RadialCurve& b) {
     return a.kind_ == b.kind_ && a.sign_ == b.sign_ && a.vector_ == b.vector_ &&
@@ -84,10 +100,9 @@ class RadialCurve {
   }
 
  private:
-  Vec2 vector_;                   // arc: centre; line: unit normal
-  double scalar_ = 0.0;           // arc: radius; line: offset >= 0
-  double polar_angle_ = 0.0;      // arc: gamma; line: phi
-  double centre_distance_ = 0.0;  // arc: d = |centre|
+  // 32 bytes: regions hold two curves per sector and A1 keeps one region per frontier point.
+  Vec2 vector_;          // arc: centre; line: unit normal
+  double scalar_ = 0.0;  // arc: radius; line: offset >= 0
   Kind kind_ = Kind::kArc;
   int8_t sign_ = 1;
 };

@@ -29,13 +29,33 @@ Vec2 Perpendicular(Vec2 v) { return {-v.y, v.x}; }
 double FastLength(Vec2 v) { return std::sqrt(SquaredLength(v)); }
 Vec2 Normalized(Vec2 v) { return (1.0 / FastLength(v)) * v; }
 
-// Whether [begin, end] (inside [-pi, pi]) overlaps the angular span [span_begin, span_end], which
-// wraps through pi when span_end < span_begin.
-bool OverlapsSpan(double begin, double end, double span_begin, double span_end) {
-  if (span_begin <= span_end) return begin < span_end && span_begin < end;
-  return (begin < span_end + 2.0 * kPi && span_begin < end) ||
-         (begin < span_end && span_begin - 2.0 * kPi < end);
+// Whether the closed wedge from unit direction `begin` counter-clockwise to `end` (at most pi
+// wide) contains direction v. Exact sign tests, no angles.
+bool InWedge(Vec2 begin, Vec2 end, Vec2 v) {
+  return Cross(begin, v) >= 0.0 && Cross(v, end) >= 0.0;
 }
+
+// Whether two closed wedges, each less than pi wide (by the sign of the cross product of its
+// ends), may overlap: one contains the other's start or the other contains this one's start.
+// Wedges that are (to rounding) pi wide or wider answer true: the test is only a shortcut.
+bool WedgesMayOverlap(Vec2 begin_a, Vec2 end_a, Vec2 begin_b, Vec2 end_b) {
+  if (!(Cross(begin_a, end_a) > 0.0) || !(Cross(begin_b, end_b) > 0.0)) return true;
+  return InWedge(begin_a, end_a, begin_b) || InWedge(begin_b, end_b, begin_a);
+}
+
+// The angle of a unit direction, computed on first use: most operations never need it.
+struct LazyAngle {
+  Vec2 direction;
+  double angle = 0.0;
+  bool known = false;
+  double Get() {
+    if (!known) {
+      angle = std::atan2(direction.y, direction.x);
+      known = true;
+    }
+    return angle;
+  }
+};
 
 // A disk seen from the apex, for SubtractDisk (subtract = true) and IntersectDisk.
 class DiskOperation {
@@ -43,40 +63,37 @@ class DiskOperation {
   DiskOperation(Vec2 centre, double radius, double centre_distance, bool subtract)
       : centre_(centre),
         radius_(radius),
+        centre_distance_(centre_distance),
         subtract_(subtract),
         apex_inside_(centre_distance <= radius),
         far_arc_(RadialCurve::Arc(centre, radius, +1)),
         near_arc_(far_arc_.OppositeHalf()) {
     if (apex_inside_) return;
-    // Tangent points from the apex: where the circle's near and far halves meet.
+    // Tangent directions from the apex, where the circle's near and far halves meet: at the
+    // half-angle asin(r / d) from the centre, so cos = t / d and sin = r / d with t = sqrt(d^2 -
+    // r^2), and the unit vectors are (t c -+ r perp(c)) / d^2.
     const double d2 = centre_distance * centre_distance;
-    const double r2 = radius * radius;
-    const Vec2 base = (1.0 - r2 / d2) * centre;
-    const Vec2 side = (radius * std::sqrt(d2 - r2) / d2) * Perpendicular(centre);
-    const Vec2 clockwise = base - side;
-    const Vec2 counter_clockwise = base + side;
-    span_begin_ = std::atan2(clockwise.y, clockwise.x);
-    span_end_ = std::atan2(counter_clockwise.y, counter_clockwise.x);
-    span_begin_direction_ = Normalized(clockwise);
-    span_end_direction_ = Normalized(counter_clockwise);
+    const double tangent = std::sqrt(d2 - radius * radius);
+    const Vec2 along = (tangent / d2) * centre;
+    const Vec2 side = (radius / d2) * Perpendicular(centre);
+    tangents_[0].direction = along - side;  // clockwise
+    tangents_[1].direction = along + side;  // counter-clockwise
   }
 
-  // Sectors whose wedge the disk cannot reach: subtract keeps them, intersect drops them.
-  bool MayTouch(const ScallopedSector& sector) const {
+  // False when the disk cannot meet the sector (subtract keeps it, intersect drops it): it lies
+  // beyond the sector's farthest distance, inside its nearest, or outside its wedge.
+  bool MayTouch(Vec2 begin, Vec2 end, double min_near, double max_far) const {
+    if (centre_distance_ >= radius_ + max_far || centre_distance_ + radius_ <= min_near) {
+      return false;
+    }
     return apex_inside_ ||
-           OverlapsSpan(sector.angle_begin, sector.angle_end, span_begin_, span_end_);
+           WedgesMayOverlap(begin, end, tangents_[0].direction, tangents_[1].direction);
   }
   bool KeepsUntouched() const { return subtract_; }
   const RadialCurve& boundary() const { return far_arc_; }
 
-  int FixedAngles(double angles[2], Vec2 directions[2]) const {
-    if (apex_inside_) return 0;
-    angles[0] = span_begin_;
-    angles[1] = span_end_;
-    directions[0] = span_begin_direction_;
-    directions[1] = span_end_direction_;
-    return 2;
-  }
+  int FixedCount() const { return apex_inside_ ? 0 : 2; }
+  LazyAngle& Fixed(int i) { return tangents_[i]; }
 
   int KeptAt(Vec2 direction, KeptInterval kept[2]) const {
     const double along = Dot(centre_, direction);
@@ -111,34 +128,31 @@ class DiskOperation {
  private:
   Vec2 centre_;
   double radius_;
+  double centre_distance_;
   bool subtract_;
   bool apex_inside_;
   RadialCurve far_arc_;
   RadialCurve near_arc_;
-  double span_begin_ = -kPi;
-  double span_end_ = kPi;
-  Vec2 span_begin_direction_;
-  Vec2 span_end_direction_;
+  LazyAngle tangents_[2];
 };
 
 // The half-plane {x : Dot(normal, x) <= offset}, apex-relative.
 class HalfPlaneOperation {
  public:
   HalfPlaneOperation(Vec2 normal, double offset)
-      : normal_(normal), offset_(offset), line_(RadialCurve::Line(normal, offset)) {}
+      : normal_(normal), offset_(offset), line_(RadialCurve::Line(normal, offset)) {
+    // Rays parallel to the line, where the kept interval switches between bounded and unbounded.
+    parallels_[0].direction = {-normal_.y, normal_.x};
+    parallels_[1].direction = {normal_.y, -normal_.x};
+  }
 
-  bool MayTouch(const ScallopedSector&) const { return true; }
+  // A sector entirely within distance `offset` of the apex lies inside the half-plane.
+  bool MayTouch(Vec2, Vec2, double, double max_far) const { return !(offset_ >= max_far); }
   bool KeepsUntouched() const { return true; }
   const RadialCurve& boundary() const { return line_; }
 
-  // Rays parallel to the line, where the kept interval switches between bounded and unbounded.
-  int FixedAngles(double angles[2], Vec2 directions[2]) const {
-    directions[0] = {-normal_.y, normal_.x};
-    directions[1] = {normal_.y, -normal_.x};
-    angles[0] = std::atan2(directions[0].y, directions[0].x);
-    angles[1] = std::atan2(directions[1].y, directions[1].x);
-    return 2;
-  }
+  int FixedCount() const { return 2; }
+  LazyAngle& Fixed(int i) { return parallels_[i]; }
 
   int KeptAt(Vec2 direction, KeptInterval kept[2]) const {
     // Along the ray s * direction: s * q <= offset.
@@ -164,6 +178,7 @@ class HalfPlaneOperation {
   Vec2 normal_;
   double offset_;
   RadialCurve line_;
+  LazyAngle parallels_[2];
 };
 
 // Where, as a fraction of a piece's width, its bounding curves are compared (golden sections).
@@ -242,24 +257,62 @@ struct PieceRun {
   const RadialCurve* upper;
 };
 
+// RadialCurve::HalfSquareIntegralRemainder of the (at most four) curves of one sector's split at
+// its critical angles, each computed once: neighbouring runs share their end angles and curves.
+class RemainderMemo {
+ public:
+  explicit RemainderMemo(const CriticalAngles& critical) : critical_(critical) {}
+
+  double At(const RadialCurve* curve, int index) {
+    int slot = 0;
+    while (slot < curve_count_ && curves_[slot] != curve) ++slot;
+    if (slot == curve_count_) {
+      curves_[curve_count_++] = curve;
+      known_[slot] = 0;
+    }
+    const unsigned bit = 1u << index;
+    if (!(known_[slot] & bit)) {
+      values_[slot][index] = curve->HalfSquareIntegralRemainder(critical_.directions[index]);
+      known_[slot] |= bit;
+    }
+    return values_[slot][index];
+  }
+
+ private:
+  const CriticalAngles& critical_;
+  const RadialCurve* curves_[4];
+  unsigned known_[4];
+  double values_[4][8];
+  int curve_count_ = 0;
+};
+
 }  // namespace
 
 ScallopedRegion ScallopedRegion::Annulus(Vec2 apex, double inner, double outer) {
   ScallopedRegion region;
-  region.apex_ = apex;
+  region.Reset(apex, inner, outer);
+  return region;
+}
+
+void ScallopedRegion::Reset(Vec2 apex, double inner, double outer) {
+  apex_ = apex;
+  sectors_.clear();
+  sector_cache_.clear();
   const RadialCurve near = RadialCurve::Arc({0.0, 0.0}, inner, +1);
   const RadialCurve far = RadialCurve::Arc({0.0, 0.0}, outer, +1);
-  region.sectors_.push_back({-kPi, 0.0, near, far});
-  region.sectors_.push_back({0.0, kPi, near, far});
-  for (const ScallopedSector& sector : region.sectors_) {
-    region.sector_cache_.push_back(
-        {sector.Area(), UnitAt(sector.angle_begin), UnitAt(sector.angle_end)});
-  }
-  region.area_ = region.sector_cache_[0].area + region.sector_cache_[1].area;
-  region.outer_bound_ = outer;
-  region.inner_bound_ = inner;
-  region.negligible_area_ = kNegligibleAreaFraction * region.area_;
-  return region;
+  sectors_.push_back({-kPi, 0.0, near, far});
+  sectors_.push_back({0.0, kPi, near, far});
+  const Vec2 minus_pi = UnitAt(-kPi);
+  const Vec2 zero = UnitAt(0.0);
+  const Vec2 plus_pi = UnitAt(kPi);
+  sector_cache_.push_back(
+      {AreaBetween(near, far, -kPi, minus_pi, 0.0, zero), minus_pi, zero, inner, outer});
+  sector_cache_.push_back(
+      {AreaBetween(near, far, 0.0, zero, kPi, plus_pi), zero, plus_pi, inner, outer});
+  area_ = sector_cache_[0].area + sector_cache_[1].area;
+  outer_bound_ = outer;
+  inner_bound_ = inner;
+  negligible_area_ = kNegligibleAreaFraction * area_;
 }
 
 void ScallopedRegion::Clear() {
@@ -269,35 +322,38 @@ void ScallopedRegion::Clear() {
 }
 
 template <typename Operation>
-void ScallopedRegion::Apply(const Operation& operation) {
-  scratch_sectors_.clear();
-  scratch_cache_.clear();
-  double total = 0.0;
+void ScallopedRegion::Apply(Operation& operation) {
   // Distances closer than this at a probe count as a tie (rounding-level relative to the region).
   const double tie_tolerance = 1e-9 * outer_bound_;
-  double fixed[2];
-  Vec2 fixed_directions[2];
-  const int fixed_count = operation.FixedAngles(fixed, fixed_directions);
-  for (size_t index = 0; index < sectors_.size(); ++index) {
+  const int fixed_count = operation.FixedCount();
+  bool changed = false;
+  // Back to front, so replacing sector `index` by several moves only sectors already done.
+  for (size_t index = sectors_.size(); index-- > 0;) {
     const ScallopedSector& sector = sectors_[index];
-    if (!operation.MayTouch(sector)) {
-      if (operation.KeepsUntouched()) {
-        scratch_sectors_.push_back(sector);
-        scratch_cache_.push_back(sector_cache_[index]);
-        total += sector_cache_[index].area;
+    const SectorCache& cache = sector_cache_[index];
+    const Vec2 begin_direction = cache.begin_direction;
+    const Vec2 end_direction = cache.end_direction;
+    if (!operation.MayTouch(begin_direction, end_direction, cache.min_near, cache.max_far)) {
+      if (!operation.KeepsUntouched()) {
+        sectors_.erase(sectors_.begin() + static_cast<std::ptrdiff_t>(index));
+        sector_cache_.erase(sector_cache_.begin() + static_cast<std::ptrdiff_t>(index));
+        changed = true;
       }
       continue;
     }
     const double begin = sector.angle_begin;
     const double end = sector.angle_end;
-    const Vec2 begin_direction = sector_cache_[index].begin_direction;
-    const Vec2 end_direction = sector_cache_[index].end_direction;
     CriticalAngles critical;
     critical.angles[0] = begin;
     critical.directions[0] = begin_direction;
     critical.count = 1;
     for (int i = 0; i < fixed_count; ++i) {
-      critical.AddIfInside(fixed[i], fixed_directions[i], begin, end);
+      LazyAngle& fixed = operation.Fixed(i);
+      // Cross products first: the angle (an atan2) only for directions inside the wedge.
+      if (Cross(begin_direction, fixed.direction) > 0.0 &&
+          Cross(fixed.direction, end_direction) > 0.0) {
+        critical.AddIfInside(fixed.Get(), fixed.direction, begin, end);
+      }
     }
     Vec2 points[2];
     for (const RadialCurve* curve : {&sector.near, &sector.far}) {
@@ -364,31 +420,71 @@ void ScallopedRegion::Apply(const Operation& operation) {
         if (!merged) runs[run_count++] = {i, i + 1, bounds[k].lower, bounds[k].upper};
       }
     }
+    if (run_count == 1 && runs[0].first == 0 && runs[0].last == critical.count - 1 &&
+        runs[0].lower == &sector.near && runs[0].upper == &sector.far) {
+      continue;  // untouched after all: leave it where it is
+    }
+    // Areas first, so the vectors are resized once and written in place.
+    double areas[14];
+    int kept = 0;
+    RemainderMemo remainders(critical);
     for (int r = 0; r < run_count; ++r) {
       const PieceRun& run = runs[r];
-      const bool unchanged = run.first == 0 && run.last == critical.count - 1 &&
-                             run.lower == &sector.near && run.upper == &sector.far;
-      double area = sector_cache_[index].area;
-      if (!unchanged) {
-        const double t0 = critical.angles[run.first];
-        const double t1 = critical.angles[run.last];
-        const Vec2 e0 = critical.directions[run.first];
-        const Vec2 e1 = critical.directions[run.last];
-        area = (run.upper->HalfSquareIntegralAlong(t1, e1) -
-                run.upper->HalfSquareIntegralAlong(t0, e0)) -
-               (run.lower->HalfSquareIntegralAlong(t1, e1) -
-                run.lower->HalfSquareIntegralAlong(t0, e0));
+      areas[r] = (run.upper->LinearCoefficient() - run.lower->LinearCoefficient()) *
+                     (critical.angles[run.last] - critical.angles[run.first]) +
+                 ((remainders.At(run.upper, run.last) - remainders.At(run.upper, run.first)) -
+                  (remainders.At(run.lower, run.last) - remainders.At(run.lower, run.first)));
+      if (!(areas[r] > negligible_area_)) {
+        // Small: keep it only if it is a real gap, wider than rounding noise.
+        const double middle = 0.5 * (critical.angles[run.first] + critical.angles[run.last]);
+        const double width = run.upper->DistanceAt(middle) - run.lower->DistanceAt(middle);
+        if (!(areas[r] > 0.0 && width > kNegligibleWidthFraction * outer_bound_)) areas[r] = 0.0;
       }
-      if (!(area > negligible_area_)) continue;
-      scratch_sectors_.push_back(
-          {critical.angles[run.first], critical.angles[run.last], *run.lower, *run.upper});
-      scratch_cache_.push_back(
-          {area, critical.directions[run.first], critical.directions[run.last]});
-      total += area;
+      if (areas[r] > 0.0) ++kept;
+    }
+    changed = true;
+    const auto offset = static_cast<std::ptrdiff_t>(index);
+    if (kept == 0) {
+      sectors_.erase(sectors_.begin() + offset);
+      sector_cache_.erase(sector_cache_.begin() + offset);
+      continue;
+    }
+    // The runs point into the old sector, which the insertion may move: keep a copy.
+    const ScallopedSector old = sector;
+    const SectorCache old_cache = cache;
+    const auto original = [&](const RadialCurve* curve) {
+      return curve == &sector.near ? &old.near : curve == &sector.far ? &old.far : curve;
+    };
+    if (kept > 1) {
+      sectors_.insert(sectors_.begin() + offset + 1, static_cast<size_t>(kept - 1), old);
+      sector_cache_.insert(sector_cache_.begin() + offset + 1, static_cast<size_t>(kept - 1),
+                           old_cache);
+    }
+    size_t out = index;
+    for (int r = 0; r < run_count; ++r) {
+      if (!(areas[r] > 0.0)) continue;
+      const PieceRun& run = runs[r];
+      const RadialCurve* lower = original(run.lower);
+      const RadialCurve* upper = original(run.upper);
+      ScallopedSector& piece = sectors_[out];
+      piece.angle_begin = critical.angles[run.first];
+      piece.angle_end = critical.angles[run.last];
+      piece.near = *lower;
+      piece.far = *upper;
+      SectorCache& piece_cache = sector_cache_[out];
+      piece_cache.area = areas[r];
+      piece_cache.begin_direction = critical.directions[run.first];
+      piece_cache.end_direction = critical.directions[run.last];
+      piece_cache.min_near =
+          lower == &old.near ? old_cache.min_near : std::max(inner_bound_, lower->MinDistance());
+      piece_cache.max_far =
+          upper == &old.far ? old_cache.max_far : std::min(outer_bound_, upper->MaxDistance());
+      ++out;
     }
   }
-  sectors_.swap(scratch_sectors_);
-  sector_cache_.swap(scratch_cache_);
+  if (!changed) return;
+  double total = 0.0;
+  for (const SectorCache& cache : sector_cache_) total += cache.area;
   area_ = total;
 }
 
@@ -401,7 +497,8 @@ void ScallopedRegion::SubtractDisk(Vec2 centre, double radius) {
     Clear();
     return;
   }
-  Apply(DiskOperation(relative, radius, distance, /*subtract=*/true));
+  DiskOperation operation(relative, radius, distance, /*subtract=*/true);
+  Apply(operation);
 }
 
 void ScallopedRegion::IntersectDisk(Vec2 centre, double radius) {
@@ -413,7 +510,8 @@ void ScallopedRegion::IntersectDisk(Vec2 centre, double radius) {
     Clear();
     return;
   }
-  Apply(DiskOperation(relative, radius, distance, /*subtract=*/false));
+  DiskOperation operation(relative, radius, distance, /*subtract=*/false);
+  Apply(operation);
   outer_bound_ = std::min(outer_bound_, distance + radius);
   inner_bound_ = std::max(inner_bound_, distance - radius);
 }
@@ -426,7 +524,8 @@ void ScallopedRegion::IntersectHalfPlane(Vec2 unit_normal, double offset) {
     Clear();
     return;
   }
-  Apply(HalfPlaneOperation(unit_normal, relative_offset));
+  HalfPlaneOperation operation(unit_normal, relative_offset);
+  Apply(operation);
 }
 
 Vec2 ScallopedRegion::Sample(double u0, double u1, double u2) const {
@@ -439,7 +538,8 @@ Vec2 ScallopedRegion::Sample(double u0, double u1, double u2) const {
     }
     remaining -= sector_cache_[i].area;
   }
-  return apex_ + sectors_[chosen].Sample(u1, u2);
+  return apex_ + sectors_[chosen].Sample(u1, u2, sector_cache_[chosen].begin_direction,
+                                         sector_cache_[chosen].end_direction);
 }
 
 bool ScallopedRegion::Contains(Vec2 p) const {

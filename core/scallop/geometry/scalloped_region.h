@@ -15,13 +15,17 @@ namespace scallop {
 // split sectors at critical angles and merge neighbouring pieces with identical curves, so the
 // sector count stays small (a handful per subtracted disk that cuts the region).
 //
-// Pieces with area below kNegligibleAreaFraction of the starting annulus are dropped: areas are
-// differences of antiderivatives of size ~outer^2, so their rounding error is ~1e-16 of the
-// annulus area; pieces a hundred times smaller than that noise are tangency slivers that carry
-// no probability mass a sampler could ever detect, and keeping them would only cost time.
+// Which pieces are dropped: a piece is a rounding artefact when its area is below
+// kNegligibleAreaFraction of the starting annulus (areas are differences of antiderivatives of
+// size ~outer^2, so their noise is ~1e-16 of it) AND it is thinner than kNegligibleWidthFraction
+// of the outer radius at its middle angle. Area alone cannot tell noise from a real gap: the gap
+// between three disks, delta outside each, has area ~5 delta^2, so an area bound at noise level
+// would drop gaps up to ~1e-7 d wide and break maximality (tests/sampler_maximality_test.cc pins
+// one). Such gaps are about delta wide, while a tangency sliver is noise-thin.
 class ScallopedRegion {
  public:
   static constexpr double kNegligibleAreaFraction = 1e-14;
+  static constexpr double kNegligibleWidthFraction = 1e-12;
 
   // The empty region.
   ScallopedRegion() = default;
@@ -29,6 +33,10 @@ class ScallopedRegion {
   // The annulus inner <= |x - apex| <= outer. O(1).
   // REQUIRES: 0 < inner < outer, finite apex.
   static ScallopedRegion Annulus(Vec2 apex, double inner, double outer);
+  // Makes this region the annulus inner <= |x - apex| <= outer, keeping its buffers' capacity so
+  // a caller that builds many regions in turn (A1: one per new point) does not allocate. O(1).
+  // REQUIRES: as Annulus.
+  void Reset(Vec2 apex, double inner, double outer);
 
   Vec2 apex() const { return apex_; }
   const std::vector<ScallopedSector>& sectors() const { return sectors_; }
@@ -40,10 +48,10 @@ class ScallopedRegion {
 
   // Removes the closed disk |x - centre| <= radius (absolute coordinates); the apex may lie
   // inside it. Cost: O(1) when the disk misses the bounding circle or the annulus hole; else
-  // O(S) in the sector count, with a few atan2/atan and sqrt per sector the disk's wedge meets
-  // (about 1 us per cutting call on an A1 neighbourhood of ~5 sectors, -O3 on the 2-core dev
-  // machine). No allocation once the internal buffers have grown. REQUIRES: radius > 0, finite
-  // inputs.
+  // O(S) cross products and radial-bound checks, plus for each sector the disk actually reaches
+  // a few sqrt and atan2/atan (one atan2 per new sector boundary, up to two atan per new sector's
+  // area). Sectors the disk misses are neither copied nor moved. Allocates only when the sector
+  // count grows past the capacity. REQUIRES: radius > 0, finite inputs.
   void SubtractDisk(Vec2 centre, double radius);
 
   // Keeps only the part inside the disk |x - centre| <= radius. Cost as SubtractDisk.
@@ -65,15 +73,18 @@ class ScallopedRegion {
 
  private:
   template <typename Operation>
-  void Apply(const Operation& operation);
+  void Apply(Operation& operation);
   void Clear();
 
-  // Per sector: its area (so Sample and Area need no recomputation) and the unit directions of
-  // its end angles (so operations need no sincos for them).
+  // Per sector: its area (so Sample and Area need no recomputation), the unit directions of its
+  // end angles (so operations need no sincos for them) and bounds on its distances from the apex
+  // (so most operations that miss it reject it with two comparisons).
   struct SectorCache {
     double area;
     Vec2 begin_direction;
     Vec2 end_direction;
+    double min_near;  // every near distance >= this
+    double max_far;   // every far distance <= this
   };
 
   Vec2 apex_;
@@ -83,9 +94,6 @@ class ScallopedRegion {
   double outer_bound_ = 0.0;  // every far distance <= this
   double inner_bound_ = 0.0;  // every near distance >= this
   double negligible_area_ = 0.0;
-  // Double buffers reused across operations so the common path does not allocate.
-  std::vector<ScallopedSector> scratch_sectors_;
-  std::vector<SectorCache> scratch_cache_;
 };
 
 }  // namespace scallop

@@ -9,21 +9,22 @@
 namespace scallop {
 
 double ScallopedSector::AreaUpTo(double angle) const {
-  const Vec2 begin = UnitAt(angle_begin);
-  const Vec2 at = UnitAt(angle);
-  return (far.HalfSquareIntegralAlong(angle, at) -
-          far.HalfSquareIntegralAlong(angle_begin, begin)) -
-         (near.HalfSquareIntegralAlong(angle, at) -
-          near.HalfSquareIntegralAlong(angle_begin, begin));
+  return AreaBetween(near, far, angle_begin, UnitAt(angle_begin), angle, UnitAt(angle));
 }
 
 double ScallopedSector::AngleAtArea(double area) const {
-  const Vec2 begin = UnitAt(angle_begin);
-  const Vec2 end = UnitAt(angle_end);
-  const double far_base = far.HalfSquareIntegralAlong(angle_begin, begin);
-  const double near_base = near.HalfSquareIntegralAlong(angle_begin, begin);
-  const double total = (far.HalfSquareIntegralAlong(angle_end, end) - far_base) -
-                       (near.HalfSquareIntegralAlong(angle_end, end) - near_base);
+  return AngleAtArea(area, UnitAt(angle_begin), UnitAt(angle_end));
+}
+
+double ScallopedSector::AngleAtArea(double area, Vec2 begin, Vec2 end) const {
+  // A(t) = slope_base * (t - angle_begin) + (R_far(t) - far_base) - (R_near(t) - near_base), the
+  // split antiderivative of RadialCurve, so each iteration costs one sincos and up to two atan.
+  const double linear = far.LinearCoefficient() - near.LinearCoefficient();
+  const double far_base = far.HalfSquareIntegralRemainder(begin);
+  const double near_base = near.HalfSquareIntegralRemainder(begin);
+  const double total =
+      linear * (angle_end - angle_begin) + ((far.HalfSquareIntegralRemainder(end) - far_base) -
+                                            (near.HalfSquareIntegralRemainder(end) - near_base));
   if (!(area > 0.0)) return angle_begin;
   if (area >= total) return angle_end;
   double low = angle_begin;
@@ -33,8 +34,9 @@ double ScallopedSector::AngleAtArea(double area) const {
   const double epsilon = std::numeric_limits<double>::epsilon();
   for (int iteration = 0; iteration < 200; ++iteration) {
     const Vec2 direction = UnitAt(angle);
-    const double residual = ((far.HalfSquareIntegralAlong(angle, direction) - far_base) -
-                             (near.HalfSquareIntegralAlong(angle, direction) - near_base)) -
+    const double residual = (linear * (angle - angle_begin) +
+                             ((far.HalfSquareIntegralRemainder(direction) - far_base) -
+                              (near.HalfSquareIntegralRemainder(direction) - near_base))) -
                             area;
     if (residual == 0.0) return angle;
     if (residual < 0.0) {
@@ -56,7 +58,13 @@ double ScallopedSector::AngleAtArea(double area) const {
 }
 
 Vec2 ScallopedSector::Sample(double u1, double u2) const {
-  const double angle = AngleAtArea(u2 * Area());
+  return Sample(u1, u2, UnitAt(angle_begin), UnitAt(angle_end));
+}
+
+Vec2 ScallopedSector::Sample(double u1, double u2, Vec2 begin_direction, Vec2 end_direction) const {
+  const double total =
+      AreaBetween(near, far, angle_begin, begin_direction, angle_end, end_direction);
+  const double angle = AngleAtArea(u2 * total, begin_direction, end_direction);
   const Vec2 direction = UnitAt(angle);
   const double g = near.DistanceAlong(direction);
   const double h = far.DistanceAlong(direction);

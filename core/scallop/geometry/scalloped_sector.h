@@ -30,10 +30,14 @@ struct ScallopedSector {
   // AreaUpTo's rounding allows (typically ~1e-15 relative to the width). Usually 4-6 iterations,
   // capped at 200. REQUIRES: Area() > 0.
   double AngleAtArea(double area) const;
+  // As AngleAtArea, given UnitAt(angle_begin) and UnitAt(angle_end) (to rounding), saving a sincos.
+  double AngleAtArea(double area, Vec2 begin_direction, Vec2 end_direction) const;
 
   // A uniformly distributed point of the sector (apex-relative) from u1, u2 in [0, 1):
   // theta = A^-1(u2 A), distance = sqrt(g^2 + u1 (h^2 - g^2)). Cost: one AngleAtArea.
   Vec2 Sample(double u1, double u2) const;
+  // As Sample, given the unit directions of the end angles (as a region caches them).
+  Vec2 Sample(double u1, double u2, Vec2 begin_direction, Vec2 end_direction) const;
 
   // True when `relative` lies in the closed sector. Cost: one atan2, two DistanceAlong.
   bool Contains(Vec2 relative) const;
@@ -41,5 +45,15 @@ struct ScallopedSector {
   // can share the atan2 among its sectors. Handles the angle pi = -pi seam.
   bool ContainsPolar(double angle, Vec2 direction, double distance) const;
 };
+
+// The area between `near` and `far` over the angles [t0, t1] with unit directions e0, e1:
+// [F_far]_t0^t1 - [F_near]_t0^t1 through RadialCurve's split antiderivative (no gamma, no sincos).
+// O(1): up to two atan. REQUIRES: the ScallopedSector invariants on [t0, t1].
+inline double AreaBetween(const RadialCurve& near, const RadialCurve& far, double t0, Vec2 e0,
+                          double t1, Vec2 e1) {
+  return (far.LinearCoefficient() - near.LinearCoefficient()) * (t1 - t0) +
+         ((far.HalfSquareIntegralRemainder(e1) - far.HalfSquareIntegralRemainder(e0)) -
+          (near.HalfSquareIntegralRemainder(e1) - near.HalfSquareIntegralRemainder(e0)));
+}
 
 }  // namespace scallop

@@ -101,7 +101,10 @@ class ScallopedSampler {
     points_.push_back(x);
     grid_.Insert(index, x);
 
-    ScallopedRegion region = ScallopedRegion::Annulus(x, spacing_, outer_radius_);
+    // Built in a reused scratch region (no allocation once it has grown), then copied out at
+    // its final, usually small, size.
+    ScallopedRegion& region = scratch_region_;
+    region.Reset(x, spacing_, outer_radius_);
     if (!problem_.domain.torus) ClipToDomain(region);
     // Earlier points own what lies within r' of them; x's s-disk leaves their
     // neighbourhoods. Images are taken near x, then moved to each point's side.
@@ -131,7 +134,7 @@ class ScallopedSampler {
       if (region.empty()) break;
       region.SubtractDisk(n.position, outer_radius_);
     }
-    neighbourhoods_.push_back(std::move(region));
+    neighbourhoods_.push_back(region.empty() ? ScallopedRegion() : region);
     if (choice_ == CandidateChoice::kUniform) candidates_.push_back(index);
     SetNeighbourhoodArea(index);
   }
@@ -175,6 +178,7 @@ class ScallopedSampler {
   size_t fixed_count_ = 0;
   std::vector<ScallopedRegion> neighbourhoods_;
   std::vector<Nearby> nearby_;  // scratch of AddPoint
+  ScallopedRegion scratch_region_;  // scratch of AddPoint
   AreaSumTree areas_;             // A1
   std::vector<int32_t> candidates_;  // A2
 };
