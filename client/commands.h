@@ -17,7 +17,17 @@ CommandRunner RegisterGenerate(CLI::App& app);
 // `scallop plane`: a rectangle of an infinite world, with point ids.
 CommandRunner RegisterPlane(CLI::App& app);
 
-// `scallop verify`: the contract checked on a rectangle of a world; exit 1 when it fails.
+// `scallop verify`: the contract checked on a rectangle of a world, locally or
+// with --server by scallopd; exit 1 when it fails or the server reports an error.
 CommandRunner RegisterVerify(CLI::App& app);
+
+// `scallop points`: a rectangle from scallopd's GetPoints, all pages.
+CommandRunner RegisterPoints(CLI::App& app);
+
+// `scallop stream`: a rectangle from scallopd's StreamPoints.
+CommandRunner RegisterStream(CLI::App& app);
+
+// `scallop info`: scallopd's version, limits, worlds and health.
+CommandRunner RegisterInfo(CLI::App& app);
 
 }  // namespace scallop::cli

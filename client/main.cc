@@ -13,6 +13,9 @@ int main(int argc, char** argv) {
       {"generate", scallop::cli::RegisterGenerate(app)},
       {"plane", scallop::cli::RegisterPlane(app)},
       {"verify", scallop::cli::RegisterVerify(app)},
+      {"points", scallop::cli::RegisterPoints(app)},
+      {"stream", scallop::cli::RegisterStream(app)},
+      {"info", scallop::cli::RegisterInfo(app)},
   };
   try {
     app.parse(argc, argv);

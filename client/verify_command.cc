@@ -1,5 +1,6 @@
 // `scallop verify`: checks the contract (spacing and maximality) on one
-// rectangle of a world and reports what it measured, as text or JSON.
+// rectangle of a world, locally or with --server through scallopd's Verify,
+// and reports what it measured, as text or JSON (the same for both paths).
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "commands.h"
+#include "remote_options.h"
 #include "scallop/plane/world_verifier.h"
 #include "world_options.h"
 
@@ -22,6 +24,7 @@ constexpr double kMaxVerifyArea = 1e7;
 
 struct VerifyArguments {
   WorldArguments world;
+  RemoteArguments remote;  // with --server, scallopd verifies instead
   bool json = false;
 };
 
@@ -88,7 +91,53 @@ void WriteTextReport(std::ostream& out, const WorldQuery& query, const VerifyRep
       << "result                     " << (report.passed() ? "pass" : "FAIL") << '\n';
 }
 
+// The server's report in the core's shape, so both paths print alike.
+VerifyReport ReportFromMessage(const v1::VerifyResponse& response) {
+  VerifyReport report;
+  report.points_checked = response.points_checked();
+  report.pairs_checked = response.pairs_checked();
+  report.min_distance = response.min_distance();
+  report.spacing_violations = response.spacing_violations();
+  report.largest_empty_circle = response.largest_empty_circle();
+  report.largest_empty_centre = {response.largest_empty_centre_x(),
+                                 response.largest_empty_centre_y()};
+  report.pairs_across_seams = response.pairs_across_seams();
+  report.min_distance_across_seams = response.min_distance_across_seams();
+  report.spacing_violations_across_seams = response.spacing_violations_across_seams();
+  report.spacing_ok = response.spacing_ok();
+  report.maximal_ok = response.maximal_ok();
+  return report;
+}
+
+int RunRemoteVerify(const VerifyArguments& arguments) {
+  v1::VerifyRequest request;
+  if (Status status = SetRequestWorldAndRect(arguments.remote, arguments.world, request);
+      !status.ok()) {
+    std::cerr << "scallop verify: " << status.message() << '\n';
+    return 2;
+  }
+  client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+  v1::VerifyResponse response;
+  if (grpc::Status status = client.Verify(request, response, CallOptionsFor(arguments.remote));
+      !status.ok()) {
+    return ReportCallFailure("verify", status);
+  }
+  StatusOr<World> world = WorldFromMessage(response.world());
+  if (!world.ok()) {
+    return ReportCallFailure("verify", {grpc::StatusCode::INTERNAL, world.status().message()});
+  }
+  WorldQuery query{.world = *world, .rect = RectFromMessage(request.rect()), .engine = {}};
+  const VerifyReport report = ReportFromMessage(response);
+  if (arguments.json) {
+    WriteJsonReport(std::cout, query, report);
+  } else {
+    WriteTextReport(std::cout, query, report);
+  }
+  return response.passed() ? 0 : 1;
+}
+
 int RunVerify(const VerifyArguments& arguments) {
+  if (!arguments.remote.server.empty()) return RunRemoteVerify(arguments);
   StatusOr<WorldQuery> query = ParseWorldQuery(arguments.world);
   if (!query.ok()) {
     std::cerr << "scallop verify: " << query.status().message() << '\n';
@@ -118,6 +167,7 @@ CommandRunner RegisterVerify(CLI::App& app) {
   CLI::App* command =
       app.add_subcommand("verify", "Check spacing and maximality on a rectangle of a world");
   AddWorldOptions(*command, arguments->world);
+  AddRemoteOptions(*command, arguments->remote, /*server_optional=*/true);
   command->add_flag("--json", arguments->json, "Print the report as one JSON object");
   return [arguments] { return RunVerify(*arguments); };
 }

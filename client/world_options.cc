@@ -11,7 +11,7 @@ namespace scallop::cli {
 // cores more threads only add start-up cost.
 constexpr int kMaxThreads = 256;
 
-void AddWorldOptions(CLI::App& command, WorldArguments& arguments) {
+void AddWorldOptions(CLI::App& command, WorldArguments& arguments, bool with_rect) {
   command.add_option("--seed", arguments.seed, "World seed, 0..2^64-1")
       ->type_name("UINT")
       ->capture_default_str();
@@ -22,11 +22,28 @@ void AddWorldOptions(CLI::App& command, WorldArguments& arguments) {
       ->capture_default_str();
   command.add_option("--threads", arguments.threads, "Threads generating regions")
       ->capture_default_str();
-  command.add_option("--rect", arguments.rect, "Rectangle X0,Y0,X1,Y1 (half-open)")->required();
+  if (with_rect) {
+    command.add_option("--rect", arguments.rect, "Rectangle X0,Y0,X1,Y1 (half-open)")->required();
+  }
 }
 
 StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments) {
   WorldQuery query;
+  StatusOr<World> world = ParseWorld(arguments);
+  if (!world.ok()) return world.status();
+  query.world = *world;
+  StatusOr<Rect> rect = ParseRect(arguments.rect, "--rect");
+  if (!rect.ok()) return rect.status();
+  query.rect = *rect;
+  if (arguments.threads < 1 || arguments.threads > kMaxThreads) {
+    return InvalidArgument("--threads: must be in 1.." + std::to_string(kMaxThreads) + ", got " +
+                           std::to_string(arguments.threads));
+  }
+  query.engine.threads = arguments.threads;
+  return query;
+}
+
+StatusOr<World> ParseWorld(const WorldArguments& arguments) {
   const std::string& seed = arguments.seed;
   uint64_t seed_value = 0;
   const auto [end, error] = std::from_chars(seed.data(), seed.data() + seed.size(), seed_value);
@@ -39,20 +56,12 @@ StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments) {
     return InvalidArgument("world.algorithm: must be a1, a2 or a3, got '" + arguments.algorithm +
                            "'");
   }
-  query.world = {.seed = seed_value,
-                 .min_distance = arguments.min_distance,
-                 .algorithm = *algorithm,
-                 .density = arguments.density};
-  if (Status status = ValidateWorld(query.world); !status.ok()) return status;
-  StatusOr<Rect> rect = ParseRect(arguments.rect, "--rect");
-  if (!rect.ok()) return rect.status();
-  query.rect = *rect;
-  if (arguments.threads < 1 || arguments.threads > kMaxThreads) {
-    return InvalidArgument("--threads: must be in 1.." + std::to_string(kMaxThreads) + ", got " +
-                           std::to_string(arguments.threads));
-  }
-  query.engine.threads = arguments.threads;
-  return query;
+  const World world{.seed = seed_value,
+                    .min_distance = arguments.min_distance,
+                    .algorithm = *algorithm,
+                    .density = arguments.density};
+  if (Status status = ValidateWorld(world); !status.ok()) return status;
+  return world;
 }
 
 }  // namespace scallop::cli

@@ -25,8 +25,9 @@ struct WorldArguments {
 };
 
 // Adds the world options to `command`, storing into `arguments`, which must
-// outlive parsing. --rect is required, so a missing one is a parse error.
-void AddWorldOptions(CLI::App& command, WorldArguments& arguments);
+// outlive parsing. With `with_rect`, --rect is added and required, so a
+// missing one is a parse error.
+void AddWorldOptions(CLI::App& command, WorldArguments& arguments, bool with_rect = true);
 
 struct WorldQuery {
   World world;
@@ -39,5 +40,8 @@ struct WorldQuery {
 // PlaneEngine::ValidateQuery, which every query runs first, because the area
 // limit is the engine's. Errors name the option or the world field.
 StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments);
+
+// The world alone (--seed, --min-distance, --algorithm, --density), checked.
+StatusOr<World> ParseWorld(const WorldArguments& arguments);
 
 }  // namespace scallop::cli

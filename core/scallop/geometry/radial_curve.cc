@@ -2,6 +2,7 @@
 // Kept apart from the header so the hot DistanceAlong stays inline while the
 // transcendental pieces live here.
 #include "scallop/geometry/radial_curve.h"
+#include "scallop/base/deterministic_math.h"
 
 #include <cmath>
 #include <limits>
@@ -42,7 +43,7 @@ double RadialCurve::MaxDistance() const {
 double RadialCurve::HalfSquareIntegralAlong(double angle, Vec2 direction) const {
   if (kind_ == Kind::kLine) return HalfSquareIntegralRemainder(direction);
   // atan2(0, 0) = 0: for a circle centred on the apex gamma is arbitrary and cancels.
-  const double polar_angle = std::atan2(vector_.y, vector_.x);
+  const double polar_angle = DetAtan2(vector_.y, vector_.x);
   return LinearCoefficient() * (angle - polar_angle) + HalfSquareIntegralRemainder(direction);
 }
 
@@ -67,7 +68,7 @@ double RadialCurve::HalfSquareIntegralRemainder(Vec2 direction) const {
     const double root = std::sqrt((scalar_ - w) * (scalar_ + w));
     // atan(w / S) equals atan2(w, S) for S >= 0 (S = 0 gives +-inf -> +-pi/2) and is cheaper;
     // the division's rounding moves the result by at most half an ulp of pi/2.
-    remainder += sign_ * (w * root + radius_squared * std::atan(w / root));
+    remainder += sign_ * (w * root + radius_squared * DetAtan(w / root));
   }
   return 0.5 * remainder;
 }

@@ -3,6 +3,7 @@
 // change, decide at each piece's mid-angle which radial intervals survive and which curve bounds
 // them, then merge neighbouring pieces with identical curves.
 #include "scallop/geometry/scalloped_region.h"
+#include "scallop/base/deterministic_math.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,7 +51,7 @@ struct LazyAngle {
   bool known = false;
   double Get() {
     if (!known) {
-      angle = std::atan2(direction.y, direction.x);
+      angle = DetAtan2(direction.y, direction.x);
       known = true;
     }
     return angle;
@@ -364,7 +365,7 @@ void ScallopedRegion::Apply(Operation& operation) {
         if (!(Cross(begin_direction, points[i]) > 0.0 && Cross(points[i], end_direction) > 0.0)) {
           continue;
         }
-        critical.AddIfInside(std::atan2(points[i].y, points[i].x), Normalized(points[i]), begin,
+        critical.AddIfInside(DetAtan2(points[i].y, points[i].x), Normalized(points[i]), begin,
                              end);
       }
     }
@@ -551,7 +552,7 @@ bool ScallopedRegion::Contains(Vec2 p) const {
     }
     return false;
   }
-  const double angle = std::atan2(relative.y, relative.x);
+  const double angle = DetAtan2(relative.y, relative.x);
   const Vec2 direction = (1.0 / distance) * relative;
   for (const ScallopedSector& sector : sectors_) {
     if (sector.ContainsPolar(angle, direction, distance)) return true;

@@ -1,6 +1,7 @@
 // ScallopedSector: closed-form area, the inverse cumulative area by safeguarded Newton, and
 // uniform sampling by inversion (Dunbar & Humphreys 2006, section "scalloped sectors").
 #include "scallop/geometry/scalloped_sector.h"
+#include "scallop/base/deterministic_math.h"
 
 #include <cmath>
 #include <limits>
@@ -83,7 +84,7 @@ bool ScallopedSector::ContainsPolar(double angle, Vec2 direction, double distanc
 bool ScallopedSector::Contains(Vec2 relative) const {
   const double distance = Length(relative);
   if (distance == 0.0) return near.DistanceAt(angle_begin) <= 0.0;
-  return ContainsPolar(std::atan2(relative.y, relative.x), (1.0 / distance) * relative, distance);
+  return ContainsPolar(DetAtan2(relative.y, relative.x), (1.0 / distance) * relative, distance);
 }
 
 }  // namespace scallop

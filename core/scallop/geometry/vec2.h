@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "scallop/base/deterministic_math.h"
+
 namespace scallop {
 
 struct Vec2 {
@@ -22,7 +24,12 @@ constexpr double SquaredLength(Vec2 a) { return Dot(a, a); }
 inline double Length(Vec2 a) { return std::hypot(a.x, a.y); }
 constexpr double SquaredDistance(Vec2 a, Vec2 b) { return SquaredLength(a - b); }
 
-// The unit vector at `angle` radians from the +x axis.
-inline Vec2 UnitAt(double angle) { return {std::cos(angle), std::sin(angle)}; }
+// The unit vector at `angle` radians from the +x axis, from our own sin and
+// cos so the bits do not depend on the CPU (base/deterministic_math.h).
+inline Vec2 UnitAt(double angle) {
+  Vec2 unit;
+  DetSinCos(angle, &unit.y, &unit.x);
+  return unit;
+}
 
 }  // namespace scallop

@@ -1,5 +1,6 @@
 // Angular range arithmetic for A3's available boundary.
 #include "scallop/sampling/available_boundary.h"
+#include "scallop/base/deterministic_math.h"
 
 #include <cmath>
 
@@ -58,8 +59,8 @@ void AvailableBoundary::SubtractKeys(double begin, double end, Vec2 begin_direct
 void AvailableBoundary::Finish() {
   size_t kept = 0;
   for (const Range& r : ranges_) {
-    double begin = r.begin == 0.0 ? 0.0 : std::atan2(r.begin_direction.y, r.begin_direction.x);
-    double end = r.end == kFullTurnKey ? kTwoPi : std::atan2(r.end_direction.y, r.end_direction.x);
+    double begin = r.begin == 0.0 ? 0.0 : DetAtan2(r.begin_direction.y, r.begin_direction.x);
+    double end = r.end == kFullTurnKey ? kTwoPi : DetAtan2(r.end_direction.y, r.end_direction.x);
     if (begin < 0) begin += kTwoPi;
     if (end <= 0 && r.end > 2.0) end += kTwoPi;  // the lower half-turn maps to (pi, 2 pi]
     if (begin < end) ranges_[kept++] = {begin, end, {}, {}};

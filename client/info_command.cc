@@ -1,0 +1,104 @@
+// `scallop info`: what a scallopd serves: its version, limits, worlds, health,
+// and one world described (--world NAME, the inline world options, or the
+// server's default when neither is given).
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "remote_options.h"
+
+namespace scallop::cli {
+namespace {
+
+struct InfoArguments {
+  WorldArguments world;
+  RemoteArguments remote;
+  bool json = false;
+  bool inline_world = false;  // any of --seed, --min-distance, --algorithm, --density given
+};
+
+int RunInfo(const InfoArguments& arguments) {
+  v1::DescribeWorldRequest describe;
+  if (!arguments.remote.world_name.empty() || arguments.inline_world) {
+    if (Status status = SetRequestWorld(arguments.remote, arguments.world, describe);
+        !status.ok()) {
+      std::cerr << "scallop info: " << status.message() << '\n';
+      return 2;
+    }
+  }
+  client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+  const client::CallOptions options = CallOptionsFor(arguments.remote);
+  v1::GetServerInfoResponse info;
+  if (grpc::Status status = client.GetServerInfo(info, options); !status.ok()) {
+    return ReportCallFailure("info", status);
+  }
+  v1::DescribeWorldResponse world;
+  if (grpc::Status status = client.DescribeWorld(describe, world, options); !status.ok()) {
+    return ReportCallFailure("info", status);
+  }
+  bool serving = false;
+  if (grpc::Status status = client.CheckHealth(serving, options); !status.ok()) {
+    return ReportCallFailure("info", status);
+  }
+  const v1::Limits& limits = info.limits();
+  const std::vector<std::string> names(info.world_names().begin(), info.world_names().end());
+  if (arguments.json) {
+    const nlohmann::json document{{"serving", serving},
+                                  {"generator_version", info.generator_version()},
+                                  {"region_side_in_d", info.region_side_in_d()},
+                                  {"precision_range_in_d", info.precision_range_in_d()},
+                                  {"limits",
+                                   {{"max_page_size", limits.max_page_size()},
+                                    {"max_query_area", limits.max_query_area()},
+                                    {"max_stream_area", limits.max_stream_area()},
+                                    {"max_verify_area", limits.max_verify_area()},
+                                    {"max_in_flight", limits.max_in_flight()}}},
+                                  {"default_world", info.default_world()},
+                                  {"worlds", names},
+                                  {"world",
+                                   {{"name", world.name()},
+                                    {"description", world.description()},
+                                    {"region_side", world.region_side()},
+                                    {"precision_limit", world.precision_limit()},
+                                    {"fingerprint", world.fingerprint()}}}};
+    std::cout << document.dump() << '\n';
+    return 0;
+  }
+  std::cout << "health              " << (serving ? "SERVING" : "NOT_SERVING") << '\n'
+            << "generator version   " << info.generator_version() << '\n'
+            << "region side         " << info.region_side_in_d() << " d\n"
+            << "precision range     |x|, |y| <= " << info.precision_range_in_d() << " d\n"
+            << "max page size       " << limits.max_page_size() << " points\n"
+            << "max query area      " << limits.max_query_area() << " d^2 (GetPoints)\n"
+            << "max stream area     " << limits.max_stream_area() << " d^2 (StreamPoints)\n"
+            << "max verify area     " << limits.max_verify_area() << " d^2 (Verify)\n"
+            << "max in flight       " << limits.max_in_flight() << " requests\n"
+            << "default world       " << info.default_world() << '\n'
+            << "worlds             ";
+  for (const std::string& name : names) std::cout << ' ' << name;
+  std::cout << '\n'
+            << "world               " << (world.name().empty() ? "(inline)" : world.name()) << ": "
+            << world.description() << '\n'
+            << "  region side       " << world.region_side() << '\n'
+            << "  precision limit   " << world.precision_limit() << '\n';
+  return 0;
+}
+
+}  // namespace
+
+CommandRunner RegisterInfo(CLI::App& app) {
+  auto arguments = std::make_shared<InfoArguments>();
+  CLI::App* command = app.add_subcommand("info", "What a scallopd serves, and one world");
+  AddWorldOptions(*command, arguments->world, /*with_rect=*/false);
+  AddRemoteOptions(*command, arguments->remote);
+  command->add_flag("--json", arguments->json, "Print one JSON object");
+  return [arguments, command] {
+    for (const char* option : {"--seed", "--min-distance", "--algorithm", "--density"}) {
+      if (command->count(option) > 0) arguments->inline_world = true;
+    }
+    return RunInfo(*arguments);
+  };
+}
+
+}  // namespace scallop::cli

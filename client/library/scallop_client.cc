@@ -1,0 +1,122 @@
+// ScallopClient: unary calls, paging, stream reading and the health check.
+#include "scallop_client.h"
+
+#include "grpc/health/v1/health.grpc.pb.h"
+#include "status_code_name.h"
+#include "world_messages.h"
+
+namespace scallop::client {
+namespace {
+
+void Configure(grpc::ClientContext& context, const CallOptions& options) {
+  if (options.timeout) context.set_deadline(std::chrono::system_clock::now() + *options.timeout);
+}
+
+grpc::Status FromCore(const Status& status) {
+  return status.ok()
+             ? grpc::Status::OK
+             : grpc::Status(grpc::StatusCode::INTERNAL, "malformed reply: " + status.message());
+}
+
+}  // namespace
+
+ScallopClient::ScallopClient(std::shared_ptr<grpc::Channel> channel)
+    : channel_(std::move(channel)), stub_(v1::Scallop::NewStub(channel_)) {}
+
+ScallopClient ScallopClient::Connect(const std::string& address) {
+  grpc::ChannelArguments arguments;
+  // Pages reach max_page_size * 24 bytes (1.5 MB by default); allow larger servers.
+  arguments.SetMaxReceiveMessageSize(64 << 20);
+  return ScallopClient(
+      grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), arguments));
+}
+
+grpc::Status ScallopClient::GetPoints(const v1::GetPointsRequest& request,
+                                      v1::GetPointsResponse& response, const CallOptions& options) {
+  grpc::ClientContext context;
+  Configure(context, options);
+  return stub_->GetPoints(&context, request, &response);
+}
+
+grpc::Status ScallopClient::GetAllPoints(v1::GetPointsRequest request, PlanePoints& points,
+                                         const CallOptions& options) {
+  while (true) {
+    v1::GetPointsResponse response;
+    if (grpc::Status status = GetPoints(request, response, options); !status.ok()) return status;
+    if (grpc::Status status = FromCore(ReadPoints(response.points(), points)); !status.ok()) {
+      return status;
+    }
+    if (response.next_page_token().empty()) return grpc::Status::OK;
+    request.set_page_token(response.next_page_token());
+  }
+}
+
+grpc::Status ScallopClient::StreamPoints(
+    const v1::StreamPointsRequest& request,
+    const std::function<bool(const v1::PointsChunk&)>& on_chunk, const CallOptions& options) {
+  grpc::ClientContext context;
+  Configure(context, options);
+  std::unique_ptr<grpc::ClientReader<v1::PointsChunk>> reader =
+      stub_->StreamPoints(&context, request);
+  v1::PointsChunk chunk;
+  while (reader->Read(&chunk)) {
+    if (!on_chunk(chunk)) {
+      context.TryCancel();
+      while (reader->Read(&chunk)) {
+      }
+      break;
+    }
+  }
+  return reader->Finish();
+}
+
+grpc::Status ScallopClient::StreamAllPoints(const v1::StreamPointsRequest& request,
+                                            PlanePoints& points, const CallOptions& options) {
+  Status malformed;
+  grpc::Status status = StreamPoints(
+      request,
+      [&](const v1::PointsChunk& chunk) {
+        malformed = ReadPoints(chunk.points(), points);
+        return malformed.ok();
+      },
+      options);
+  return malformed.ok() ? status : FromCore(malformed);
+}
+
+grpc::Status ScallopClient::Verify(const v1::VerifyRequest& request, v1::VerifyResponse& response,
+                                   const CallOptions& options) {
+  grpc::ClientContext context;
+  Configure(context, options);
+  return stub_->Verify(&context, request, &response);
+}
+
+grpc::Status ScallopClient::DescribeWorld(const v1::DescribeWorldRequest& request,
+                                          v1::DescribeWorldResponse& response,
+                                          const CallOptions& options) {
+  grpc::ClientContext context;
+  Configure(context, options);
+  return stub_->DescribeWorld(&context, request, &response);
+}
+
+grpc::Status ScallopClient::GetServerInfo(v1::GetServerInfoResponse& response,
+                                          const CallOptions& options) {
+  grpc::ClientContext context;
+  Configure(context, options);
+  return stub_->GetServerInfo(&context, v1::GetServerInfoRequest(), &response);
+}
+
+grpc::Status ScallopClient::CheckHealth(bool& serving, const CallOptions& options) {
+  grpc::ClientContext context;
+  Configure(context, options);
+  grpc::health::v1::HealthCheckResponse response;
+  const grpc::Status status = grpc::health::v1::Health::NewStub(channel_)->Check(
+      &context, grpc::health::v1::HealthCheckRequest(), &response);
+  serving = status.ok() && response.status() == grpc::health::v1::HealthCheckResponse::SERVING;
+  return status;
+}
+
+std::string DescribeStatus(const grpc::Status& status) {
+  return std::string(StatusCodeName(status.error_code())) + ": " + status.error_message();
+}
+
+}  // namespace scallop::client

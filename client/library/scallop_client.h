@@ -1,0 +1,70 @@
+// ScallopClient: a small synchronous C++ client of scallopd, for the CLI and
+// for any program that links `scallop_client`. Paging and stream reading are
+// done here, so callers get whole rectangles as the core's PlanePoints.
+// Thread-safe: one client (one channel) may serve many threads.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "scallop/plane/plane_engine.h"
+#include "scallop/v1/scallop.grpc.pb.h"
+
+namespace scallop::client {
+
+struct CallOptions {
+  // Deadline of each call, from when it starts; none when unset.
+  std::optional<std::chrono::milliseconds> timeout;
+};
+
+class ScallopClient {
+ public:
+  explicit ScallopClient(std::shared_ptr<grpc::Channel> channel);
+
+  // A client of HOST:PORT over plaintext. Cheap: connects on the first call.
+  static ScallopClient Connect(const std::string& address);
+
+  // One page, as the server returns it.
+  grpc::Status GetPoints(const v1::GetPointsRequest& request, v1::GetPointsResponse& response,
+                         const CallOptions& options = {});
+
+  // Every point of request.rect, following next_page_token until the last page
+  // (request.page_token is the first page's). Points are appended to `points`.
+  grpc::Status GetAllPoints(v1::GetPointsRequest request, PlanePoints& points,
+                            const CallOptions& options = {});
+
+  // Reads a stream, calling on_chunk for each chunk in order. on_chunk returns
+  // false to cancel the call (the result is then CANCELLED).
+  grpc::Status StreamPoints(const v1::StreamPointsRequest& request,
+                            const std::function<bool(const v1::PointsChunk&)>& on_chunk,
+                            const CallOptions& options = {});
+
+  // Every chunk's points appended to `points`.
+  grpc::Status StreamAllPoints(const v1::StreamPointsRequest& request, PlanePoints& points,
+                               const CallOptions& options = {});
+
+  grpc::Status Verify(const v1::VerifyRequest& request, v1::VerifyResponse& response,
+                      const CallOptions& options = {});
+  grpc::Status DescribeWorld(const v1::DescribeWorldRequest& request,
+                             v1::DescribeWorldResponse& response, const CallOptions& options = {});
+  grpc::Status GetServerInfo(v1::GetServerInfoResponse& response, const CallOptions& options = {});
+
+  // The standard health check of the whole server: true when SERVING.
+  grpc::Status CheckHealth(bool& serving, const CallOptions& options = {});
+
+  const std::shared_ptr<grpc::Channel>& channel() const { return channel_; }
+
+ private:
+  std::shared_ptr<grpc::Channel> channel_;
+  std::unique_ptr<v1::Scallop::Stub> stub_;
+};
+
+// "INVALID_ARGUMENT: rect.x0: must be finite", for messages on stderr.
+std::string DescribeStatus(const grpc::Status& status);
+
+}  // namespace scallop::client

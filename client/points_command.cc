@@ -1,0 +1,61 @@
+// `scallop points`: a rectangle of a world from scallopd's GetPoints, page by
+// page, printed as `scallop plane` prints it.
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "commands.h"
+#include "remote_options.h"
+#include "remote_points_output.h"
+
+namespace scallop::cli {
+namespace {
+
+struct PointsArguments {
+  WorldArguments world;
+  RemoteArguments remote;
+  PointFormat format = PointFormat::kCsv;
+  bool seams = false;
+  int page_size = 0;
+};
+
+int RunPoints(const PointsArguments& arguments) {
+  v1::GetPointsRequest request;
+  if (Status status = SetRequestWorldAndRect(arguments.remote, arguments.world, request);
+      !status.ok()) {
+    std::cerr << "scallop points: " << status.message() << '\n';
+    return 2;
+  }
+  request.set_page_size(arguments.page_size);
+  client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+  const client::CallOptions options = CallOptionsFor(arguments.remote);
+  PlanePoints points;
+  if (grpc::Status status = client.GetAllPoints(request, points, options); !status.ok()) {
+    return ReportCallFailure("points", status);
+  }
+  if (grpc::Status status = WriteRemotePoints(client, request, options, arguments.format,
+                                              arguments.seams, points, std::cout);
+      !status.ok()) {
+    return ReportCallFailure("points", status);
+  }
+  return 0;
+}
+
+}  // namespace
+
+CommandRunner RegisterPoints(CLI::App& app) {
+  auto arguments = std::make_shared<PointsArguments>();
+  CLI::App* command = app.add_subcommand("points", "A rectangle of a world, from scallopd (paged)");
+  AddWorldOptions(*command, arguments->world);
+  AddRemoteOptions(*command, arguments->remote);
+  std::map<std::string, PointFormat> formats(PointFormatNames().begin(), PointFormatNames().end());
+  command->add_option("--format", arguments->format, "csv, json, svg or none")
+      ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case))
+      ->option_text("csv|json|svg|none (default csv)");
+  command->add_flag("--seams", arguments->seams, "svg: draw the region seams (every 16 d)");
+  command->add_option("--page-size", arguments->page_size, "Points per page (0: server's maximum)")
+      ->check(CLI::NonNegativeNumber);
+  return [arguments] { return RunPoints(*arguments); };
+}
+
+}  // namespace scallop::cli

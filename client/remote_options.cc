@@ -1,0 +1,37 @@
+// Registration of the remote options and the common failure report.
+#include "remote_options.h"
+
+#include <iostream>
+
+namespace scallop::cli {
+
+void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server_optional) {
+  CLI::Option* server =
+      command.add_option("--server", arguments.server, "scallopd address HOST:PORT");
+  if (!server_optional) server->required();
+  CLI::Option* world =
+      command.add_option("--world", arguments.world_name, "A world configured on the server");
+  if (server_optional) world->needs(server);
+  for (const char* inline_option : {"--seed", "--min-distance", "--algorithm", "--density"}) {
+    if (CLI::Option* option = command.get_option_no_throw(inline_option)) world->excludes(option);
+  }
+  command.add_option("--timeout", arguments.timeout_seconds, "Deadline of each call, seconds")
+      ->check(CLI::NonNegativeNumber);
+  if (server_optional) command.get_option("--timeout")->needs(server);
+}
+
+client::CallOptions CallOptionsFor(const RemoteArguments& arguments) {
+  client::CallOptions options;
+  if (arguments.timeout_seconds > 0) {
+    options.timeout =
+        std::chrono::milliseconds(static_cast<int64_t>(arguments.timeout_seconds * 1000.0 + 0.5));
+  }
+  return options;
+}
+
+int ReportCallFailure(const std::string& command, const grpc::Status& status) {
+  std::cerr << "scallop " << command << ": " << client::DescribeStatus(status) << '\n';
+  return 1;
+}
+
+}  // namespace scallop::cli

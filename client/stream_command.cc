@@ -1,0 +1,79 @@
+// `scallop stream`: a rectangle of a world from scallopd's StreamPoints. CSV is
+// written chunk by chunk as it arrives, so memory stays bounded; JSON and SVG
+// are whole documents and are written at the end.
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "commands.h"
+#include "remote_options.h"
+#include "remote_points_output.h"
+
+namespace scallop::cli {
+namespace {
+
+struct StreamArguments {
+  WorldArguments world;
+  RemoteArguments remote;
+  PointFormat format = PointFormat::kCsv;
+  bool seams = false;
+};
+
+int RunStream(const StreamArguments& arguments) {
+  v1::StreamPointsRequest request;
+  if (Status status = SetRequestWorldAndRect(arguments.remote, arguments.world, request);
+      !status.ok()) {
+    std::cerr << "scallop stream: " << status.message() << '\n';
+    return 2;
+  }
+  client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+  const client::CallOptions options = CallOptionsFor(arguments.remote);
+  PlanePoints points;
+  const bool incremental_csv = arguments.format == PointFormat::kCsv;
+  // The same text as WritePoints' CSV: a header, then id,x,y with 17 digits.
+  if (incremental_csv) std::cout << std::setprecision(17) << "id,x,y\n";
+  Status malformed;
+  const grpc::Status status = client.StreamPoints(
+      request,
+      [&](const v1::PointsChunk& chunk) {
+        if (!incremental_csv) {
+          malformed = ReadPoints(chunk.points(), points);
+          return malformed.ok();
+        }
+        const v1::Points& p = chunk.points();
+        for (int k = 0; k < p.xs_size() && k < p.ys_size() && k < p.ids_size(); ++k) {
+          std::cout << p.ids(k) << ',' << p.xs(k) << ',' << p.ys(k) << '\n';
+        }
+        return true;
+      },
+      options);
+  if (!status.ok()) return ReportCallFailure("stream", status);
+  if (!malformed.ok())
+    return ReportCallFailure("stream", {grpc::StatusCode::INTERNAL, malformed.message()});
+  if (incremental_csv) return 0;
+  if (grpc::Status written = WriteRemotePoints(client, request, options, arguments.format,
+                                               arguments.seams, points, std::cout);
+      !written.ok()) {
+    return ReportCallFailure("stream", written);
+  }
+  return 0;
+}
+
+}  // namespace
+
+CommandRunner RegisterStream(CLI::App& app) {
+  auto arguments = std::make_shared<StreamArguments>();
+  CLI::App* command =
+      app.add_subcommand("stream", "A rectangle of a world, from scallopd (streamed by region)");
+  AddWorldOptions(*command, arguments->world);
+  AddRemoteOptions(*command, arguments->remote);
+  std::map<std::string, PointFormat> formats(PointFormatNames().begin(), PointFormatNames().end());
+  command->add_option("--format", arguments->format, "csv, json, svg or none")
+      ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case))
+      ->option_text("csv|json|svg|none (default csv)");
+  command->add_flag("--seams", arguments->seams, "svg: draw the region seams (every 16 d)");
+  return [arguments] { return RunStream(*arguments); };
+}
+
+}  // namespace scallop::cli

@@ -1,0 +1,91 @@
+// World, rectangle and point conversions between scallop.v1 messages and the core.
+#include "world_messages.h"
+
+#include <string>
+
+namespace scallop {
+
+StatusOr<World> WorldFromMessage(const v1::World& message) {
+  World world;
+  world.seed = message.seed();
+  world.min_distance = message.min_distance();
+  switch (message.algorithm()) {
+    case v1::ALGORITHM_A1:
+      world.algorithm = Algorithm::kA1;
+      break;
+    case v1::ALGORITHM_A2:
+      world.algorithm = Algorithm::kA2;
+      break;
+    case v1::ALGORITHM_A3:
+      world.algorithm = Algorithm::kA3;
+      break;
+    default:
+      return InvalidArgument(
+          "world.algorithm: must be ALGORITHM_A1, ALGORITHM_A2 or ALGORITHM_A3, got " +
+          std::to_string(message.algorithm()));
+  }
+  // proto3 cannot tell an unset double from 0, and 0 is never a valid density
+  // or version, so 0 safely means "the default".
+  world.density = message.density() == 0.0 ? 2.0 : message.density();
+  world.generator_version =
+      message.generator_version() == 0 ? kGeneratorVersion : message.generator_version();
+  if (Status status = ValidateWorld(world); !status.ok()) return status;
+  return CanonicalWorld(world);
+}
+
+v1::World WorldToMessage(const World& world) {
+  v1::World message;
+  message.set_seed(world.seed);
+  message.set_min_distance(world.min_distance);
+  switch (world.algorithm) {
+    case Algorithm::kA1:
+      message.set_algorithm(v1::ALGORITHM_A1);
+      break;
+    case Algorithm::kA2:
+      message.set_algorithm(v1::ALGORITHM_A2);
+      break;
+    default:
+      message.set_algorithm(v1::ALGORITHM_A3);
+      break;
+  }
+  message.set_density(CanonicalWorld(world).density);
+  message.set_generator_version(world.generator_version);
+  return message;
+}
+
+Rect RectFromMessage(const v1::Rect& message) {
+  return {message.x0(), message.y0(), message.x1(), message.y1()};
+}
+
+v1::Rect RectToMessage(const Rect& rect) {
+  v1::Rect message;
+  message.set_x0(rect.x0);
+  message.set_y0(rect.y0);
+  message.set_x1(rect.x1);
+  message.set_y1(rect.y1);
+  return message;
+}
+
+void AppendPoints(const PlanePoints& points, size_t begin, size_t end, v1::Points& message) {
+  message.mutable_xs()->Reserve(message.xs_size() + static_cast<int>(end - begin));
+  message.mutable_ys()->Reserve(message.ys_size() + static_cast<int>(end - begin));
+  message.mutable_ids()->Reserve(message.ids_size() + static_cast<int>(end - begin));
+  for (size_t k = begin; k < end; ++k) {
+    message.add_xs(points.positions[k].x);
+    message.add_ys(points.positions[k].y);
+    message.add_ids(points.ids[k]);
+  }
+}
+
+Status ReadPoints(const v1::Points& message, PlanePoints& points) {
+  if (message.xs_size() != message.ys_size() || message.xs_size() != message.ids_size()) {
+    return InvalidArgument("points: xs, ys and ids must have the same length");
+  }
+  for (int k = 0; k < message.xs_size(); ++k) {
+    points.positions.push_back({message.xs(k), message.ys(k)});
+    points.ids.push_back(message.ids(k));
+  }
+  return Status::Ok();
+}
+
+}  // namespace scallop

@@ -1,0 +1,35 @@
+// Conversions between the API's messages (scallop.v1.World, Rect, Points) and
+// the core's value types, shared by scallopd and the client library so both
+// read the proto's defaults (density 0, generator_version 0) the same way.
+#pragma once
+
+#include <span>
+
+#include "scallop/base/status.h"
+#include "scallop/geometry/rect.h"
+#include "scallop/plane/plane_engine.h"
+#include "scallop/plane/world.h"
+#include "scallop/v1/scallop.pb.h"
+
+namespace scallop {
+
+// The message's world, with its zero defaults filled in and ValidateWorld
+// applied. INVALID_ARGUMENT naming the field (world.algorithm, world.density,
+// world.min_distance, world.generator_version) otherwise.
+StatusOr<World> WorldFromMessage(const v1::World& message);
+
+// The world as a message, every field explicit (no zero defaults left).
+v1::World WorldToMessage(const World& world);
+
+// Field-for-field; the range checks are PlaneEngine::ValidateQuery's.
+Rect RectFromMessage(const v1::Rect& message);
+v1::Rect RectToMessage(const Rect& rect);
+
+// Points [begin, end) of `points` appended to the packed arrays of `message`.
+void AppendPoints(const PlanePoints& points, size_t begin, size_t end, v1::Points& message);
+
+// The message's points appended to `points`. INVALID_ARGUMENT when the three
+// arrays differ in length (a malformed message).
+Status ReadPoints(const v1::Points& message, PlanePoints& points);
+
+}  // namespace scallop

@@ -1,0 +1,27 @@
+// DescribeWorld: a world's parameters with defaults filled in, and its geometry.
+#include "scallop/plane/region_layout.h"
+#include "scallop_service.h"
+#include "world_messages.h"
+
+namespace scallop::server {
+
+grpc::ServerUnaryReactor* ScallopService::DescribeWorld(grpc::CallbackServerContext* context,
+                                                        const v1::DescribeWorldRequest* request,
+                                                        v1::DescribeWorldResponse* response) {
+  return RunUnary(context, "DescribeWorld", [this, request, response](RequestLog& log) {
+    ResolvedWorld resolved;
+    if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
+    const World& world = resolved.world;
+    log.set_world(scallop::DescribeWorld(world));
+    const RegionLayout layout(world.min_distance);
+    *response->mutable_world() = WorldToMessage(world);
+    response->set_name(resolved.name);
+    response->set_description(scallop::DescribeWorld(world));
+    response->set_region_side(layout.side());
+    response->set_precision_limit(layout.precision_limit());
+    response->set_fingerprint(WorldFingerprint(world));
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace scallop::server

@@ -1,0 +1,158 @@
+// scallopd: the Scallop gRPC server. Reads flags and an optional YAML config,
+// serves scallop.v1.Scallop, grpc.health.v1 and reflection, and on SIGTERM or
+// SIGINT goes NOT_SERVING, lets in-flight calls finish within the grace
+// period, and exits 0.
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/grpcpp.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <spdlog/sinks/stdout_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <boost/asio/thread_pool.hpp>
+#include <chrono>
+#include <iostream>
+#include <limits>
+#include <thread>
+
+#include "page_token.h"
+#include "scallop_service.h"
+#include "server_config.h"
+#include "world_registry.h"
+
+namespace {
+
+using scallop::server::ServerConfig;
+
+// Defaults, then the --config file, then the other flags. Exit code on error.
+std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config) {
+  CLI::App app{"scallopd: the Scallop gRPC server"};
+  std::string config_path;
+  std::vector<std::string> world_specs;
+  ServerConfig flags;  // flag values, applied only when given
+  app.add_option("--config", config_path, "YAML configuration file (flags override it)");
+  app.add_option("--listen", flags.listen, "HOST:PORT to listen on (port 0: any free port)")
+      ->default_str(config.listen);
+  app.add_option("--threads", flags.threads, "Request threads, and as many generating")
+      ->default_str(std::to_string(config.threads));
+  app.add_option("--cache-megabytes", flags.cache_megabytes, "Region cache budget")
+      ->default_str(std::to_string(config.cache_megabytes));
+  app.add_option("--max-page-size", flags.max_page_size, "Points per GetPoints page")
+      ->default_str(std::to_string(config.max_page_size));
+  app.add_option("--max-query-area", flags.max_query_area, "GetPoints area limit, d^2")
+      ->default_str("1e6");
+  app.add_option("--max-stream-area", flags.max_stream_area, "StreamPoints area limit, d^2")
+      ->default_str("1e8");
+  app.add_option("--max-verify-area", flags.max_verify_area, "Verify area limit, d^2")
+      ->default_str("1e6");
+  app.add_option("--max-in-flight", flags.max_in_flight, "Concurrent requests before shedding")
+      ->default_str(std::to_string(config.max_in_flight));
+  app.add_option("--grace-seconds", flags.grace_seconds, "Time in-flight calls get on SIGTERM")
+      ->default_str("10");
+  app.add_option("--drain-seconds", flags.drain_seconds,
+                 "NOT_SERVING this long on SIGTERM before new calls are refused")
+      ->default_str("0");
+  app.add_option("--page-token-secret", flags.page_token_secret,
+                 "Key of page tokens (default: derived from the world set)");
+  app.add_option("--default-world", flags.default_world, "World used when a request names none")
+      ->default_str(config.default_world);
+  app.add_option("--world", world_specs, "Named world NAME:SEED:MIN_DISTANCE:ALGORITHM[:DENSITY]");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  if (!config_path.empty()) {
+    if (scallop::Status status = scallop::server::LoadConfigFile(config_path, config);
+        !status.ok()) {
+      std::cerr << "scallopd: " << status.message() << '\n';
+      return 2;
+    }
+  }
+  auto apply = [&](const char* flag, auto member) {
+    if (app.count(flag) > 0) config.*member = flags.*member;
+  };
+  apply("--listen", &ServerConfig::listen);
+  apply("--threads", &ServerConfig::threads);
+  apply("--cache-megabytes", &ServerConfig::cache_megabytes);
+  apply("--max-page-size", &ServerConfig::max_page_size);
+  apply("--max-query-area", &ServerConfig::max_query_area);
+  apply("--max-stream-area", &ServerConfig::max_stream_area);
+  apply("--max-verify-area", &ServerConfig::max_verify_area);
+  apply("--max-in-flight", &ServerConfig::max_in_flight);
+  apply("--grace-seconds", &ServerConfig::grace_seconds);
+  apply("--drain-seconds", &ServerConfig::drain_seconds);
+  apply("--page-token-secret", &ServerConfig::page_token_secret);
+  apply("--default-world", &ServerConfig::default_world);
+  for (const std::string& spec : world_specs) {
+    if (scallop::Status status = scallop::server::AddWorldSpec(spec, config); !status.ok()) {
+      std::cerr << "scallopd: " << status.message() << '\n';
+      return 2;
+    }
+  }
+  if (scallop::Status status = scallop::server::ValidateConfig(config); !status.ok()) {
+    std::cerr << "scallopd: " << status.message() << '\n';
+    return 2;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ServerConfig config;
+  if (std::optional<int> exit_code = ParseCommandLine(argc, argv, config)) return *exit_code;
+  // Logs on stderr; stdout carries only the address line, for scripts and tests.
+  spdlog::set_default_logger(spdlog::stderr_logger_mt("scallopd"));
+
+  const scallop::server::WorldRegistry worlds(config.worlds, config.default_world);
+  const scallop::server::PageTokenCodec page_tokens(
+      config.page_token_secret.empty() ? "scallop-page-token/" + worlds.Fingerprint()
+                                       : config.page_token_secret);
+  // The engine's own area check is switched off: each method checks its own
+  // limit (query_limits.h) before calling it, and Verify adds a halo on top.
+  scallop::PlaneEngine engine({.cache_bytes = config.cache_megabytes << 20,
+                               .threads = config.threads,
+                               .max_query_area = std::numeric_limits<double>::infinity()});
+  boost::asio::thread_pool request_pool(static_cast<size_t>(config.threads));
+  scallop::server::ScallopService service(config, worlds, page_tokens, engine, request_pool);
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort(config.listen, grpc::InsecureServerCredentials(), &port);
+  builder.RegisterService(&service);
+  std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
+  if (!server || port == 0) {
+    spdlog::error("cannot listen on {}", config.listen);
+    return 1;
+  }
+  const std::string host = config.listen.substr(0, config.listen.rfind(':'));
+  std::cout << "scallopd listening on " << host << ':' << port << std::endl;
+  spdlog::info("listening on {}:{}; default world {} ({}); {} threads", host, port,
+               config.default_world, scallop::DescribeWorld(config.worlds.at(config.default_world)),
+               config.threads);
+
+  boost::asio::io_context signals_context;
+  boost::asio::signal_set signals(signals_context, SIGINT, SIGTERM);
+  signals.async_wait([&](const boost::system::error_code& error, int signal_number) {
+    if (error) return;
+    spdlog::info("signal {}: NOT_SERVING, draining {} s, then {} s of grace for in-flight calls",
+                 signal_number, config.drain_seconds, config.grace_seconds);
+    server->GetHealthCheckService()->SetServingStatus(false);
+    std::this_thread::sleep_for(std::chrono::duration<double>(config.drain_seconds));
+    // Refuses new calls at once; calls still running at the deadline are cancelled.
+    const auto deadline = std::chrono::system_clock::now() +
+                          std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                              std::chrono::duration<double>(config.grace_seconds));
+    server->Shutdown(deadline);
+  });
+  signals_context.run();
+  server->Wait();
+  request_pool.join();
+  spdlog::info("stopped");
+  return 0;
+}

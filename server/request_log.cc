@@ -1,0 +1,25 @@
+// Request log lines, through spdlog (stderr).
+#include "request_log.h"
+
+#include <spdlog/spdlog.h>
+
+#include "status_code_name.h"
+
+namespace scallop::server {
+
+void RequestLog::Finish(const grpc::Status& status) const {
+  const double milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+  const std::string rect =
+      rect_ ? fmt::format("[{},{})x[{},{})", rect_->x0, rect_->x1, rect_->y0, rect_->y1) : "-";
+  if (status.ok()) {
+    spdlog::info("{} world=\"{}\" rect={} points={} ms={:.1f} code=OK", method_, world_, rect,
+                 points_, milliseconds);
+  } else {
+    spdlog::warn("{} world=\"{}\" rect={} points={} ms={:.1f} code={} message=\"{}\"", method_,
+                 world_, rect, points_, milliseconds, StatusCodeName(status.error_code()),
+                 status.error_message());
+  }
+}
+
+}  // namespace scallop::server

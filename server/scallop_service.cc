@@ -1,0 +1,46 @@
+// The service's shared machinery: construction and the unary call path.
+#include "scallop_service.h"
+
+#include <boost/asio/post.hpp>
+
+namespace scallop::server {
+
+ScallopService::ScallopService(const ServerConfig& config, const WorldRegistry& worlds,
+                               const PageTokenCodec& page_tokens, PlaneEngine& engine,
+                               boost::asio::thread_pool& request_pool)
+    : config_(config),
+      worlds_(worlds),
+      page_tokens_(page_tokens),
+      engine_(engine),
+      request_pool_(request_pool),
+      in_flight_(config.max_in_flight) {}
+
+grpc::Status ScallopService::Overloaded(int limit) {
+  return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+          "server: " + std::to_string(limit) +
+              " requests already in flight (max_in_flight); retry with backoff"};
+}
+
+grpc::ServerUnaryReactor* ScallopService::RunUnary(grpc::CallbackServerContext* context,
+                                                   const char* method, UnaryWork work) {
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  auto log = std::make_shared<RequestLog>(method);
+  if (!in_flight_.TryAdmit()) {
+    const grpc::Status status = Overloaded(in_flight_.limit());
+    log->Finish(status);
+    reactor->Finish(status);
+    return reactor;
+  }
+  // The request and response stay valid until Finish, so the work may use them.
+  boost::asio::post(request_pool_, [this, context, reactor, log, work = std::move(work)] {
+    const grpc::Status status = context->IsCancelled()
+                                    ? grpc::Status(grpc::StatusCode::CANCELLED, "client cancelled")
+                                    : work(*log);
+    log->Finish(status);
+    in_flight_.Release();
+    reactor->Finish(status);
+  });
+  return reactor;
+}
+
+}  // namespace scallop::server

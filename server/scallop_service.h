@@ -1,0 +1,61 @@
+// The scallop.v1.Scallop service on gRPC's callback API: no thread per
+// request. Handlers hand each call to the request pool, which validates and
+// answers it; the engine generates regions on its own pool and shares one
+// region cache among all requests, so a region is generated once however many
+// requests want it at once. Each RPC's body lives in its own file.
+#pragma once
+
+#include <boost/asio/thread_pool.hpp>
+#include <functional>
+
+#include "in_flight_limit.h"
+#include "page_token.h"
+#include "request_log.h"
+#include "scallop/plane/plane_engine.h"
+#include "scallop/v1/scallop.grpc.pb.h"
+#include "server_config.h"
+#include "world_registry.h"
+
+namespace scallop::server {
+
+class ScallopService final : public v1::Scallop::CallbackService {
+ public:
+  // All references must outlive the service; the pool must outlive every call.
+  ScallopService(const ServerConfig& config, const WorldRegistry& worlds,
+                 const PageTokenCodec& page_tokens, PlaneEngine& engine,
+                 boost::asio::thread_pool& request_pool);
+
+  grpc::ServerUnaryReactor* GetPoints(grpc::CallbackServerContext* context,
+                                      const v1::GetPointsRequest* request,
+                                      v1::GetPointsResponse* response) override;
+  grpc::ServerWriteReactor<v1::PointsChunk>* StreamPoints(
+      grpc::CallbackServerContext* context, const v1::StreamPointsRequest* request) override;
+  grpc::ServerUnaryReactor* Verify(grpc::CallbackServerContext* context,
+                                   const v1::VerifyRequest* request,
+                                   v1::VerifyResponse* response) override;
+  grpc::ServerUnaryReactor* DescribeWorld(grpc::CallbackServerContext* context,
+                                          const v1::DescribeWorldRequest* request,
+                                          v1::DescribeWorldResponse* response) override;
+  grpc::ServerUnaryReactor* GetServerInfo(grpc::CallbackServerContext* context,
+                                          const v1::GetServerInfoRequest* request,
+                                          v1::GetServerInfoResponse* response) override;
+
+ private:
+  friend class StreamPointsReactor;
+  using UnaryWork = std::function<grpc::Status(RequestLog& log)>;
+
+  // Admits the call (or sheds it with RESOURCE_EXHAUSTED), runs `work` on the
+  // request pool unless the client has gone, logs and finishes the call.
+  grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context, const char* method,
+                                     UnaryWork work);
+  static grpc::Status Overloaded(int limit);
+
+  const ServerConfig& config_;
+  const WorldRegistry& worlds_;
+  const PageTokenCodec& page_tokens_;
+  PlaneEngine& engine_;
+  boost::asio::thread_pool& request_pool_;
+  InFlightLimit in_flight_;
+};
+
+}  // namespace scallop::server

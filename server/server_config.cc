@@ -1,0 +1,134 @@
+// Loading and checking scallopd's configuration (YAML file and --world specs).
+#include "server_config.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <charconv>
+#include <set>
+#include <sstream>
+#include <vector>
+
+namespace scallop::server {
+namespace {
+
+StatusOr<World> WorldFromFields(const std::string& where, uint64_t seed, double min_distance,
+                                const std::string& algorithm_name, double density) {
+  StatusOr<Algorithm> algorithm = ParseAlgorithm(algorithm_name);
+  if (!algorithm.ok()) {
+    return InvalidArgument(where + ".algorithm: must be a1, a2 or a3, got '" + algorithm_name +
+                           "'");
+  }
+  const World world{
+      .seed = seed, .min_distance = min_distance, .algorithm = *algorithm, .density = density};
+  if (Status status = ValidateWorld(world); !status.ok()) {
+    return InvalidArgument(where + ": " + status.message());
+  }
+  return CanonicalWorld(world);
+}
+
+}  // namespace
+
+Status LoadConfigFile(const std::string& path, ServerConfig& config) {
+  const std::set<std::string> known{"listen",          "threads",           "cache_megabytes",
+                                    "max_page_size",   "max_query_area",    "max_stream_area",
+                                    "max_verify_area", "max_in_flight",     "grace_seconds",
+                                    "drain_seconds",   "page_token_secret", "default_world",
+                                    "worlds"};
+  std::string key;
+  try {
+    const YAML::Node root = YAML::LoadFile(path);
+    if (!root.IsMap()) return InvalidArgument(path + ": must be a map of settings");
+    for (const auto& entry : root) {
+      key = entry.first.as<std::string>();
+      if (!known.contains(key)) return InvalidArgument(path + ": unknown setting '" + key + "'");
+    }
+    auto read = [&](const char* name, auto& value) {
+      key = name;
+      if (root[name]) value = root[name].as<std::decay_t<decltype(value)>>();
+    };
+    read("listen", config.listen);
+    read("threads", config.threads);
+    read("cache_megabytes", config.cache_megabytes);
+    read("max_page_size", config.max_page_size);
+    read("max_query_area", config.max_query_area);
+    read("max_stream_area", config.max_stream_area);
+    read("max_verify_area", config.max_verify_area);
+    read("max_in_flight", config.max_in_flight);
+    read("grace_seconds", config.grace_seconds);
+    read("drain_seconds", config.drain_seconds);
+    read("page_token_secret", config.page_token_secret);
+    read("default_world", config.default_world);
+    for (const auto& entry : root["worlds"]) {
+      const std::string name = entry.first.as<std::string>();
+      const YAML::Node& fields = entry.second;
+      key = "worlds." + name;
+      StatusOr<World> world = WorldFromFields(
+          path + ": worlds." + name, fields["seed"].as<uint64_t>(0),
+          fields["min_distance"].as<double>(1.0), fields["algorithm"].as<std::string>("a3"),
+          fields["density"].as<double>(2.0));
+      if (!world.ok()) return world.status();
+      config.worlds[name] = *world;
+    }
+  } catch (const YAML::Exception& e) {
+    return InvalidArgument(path + ": " + (key.empty() ? "" : key + ": ") + e.what());
+  }
+  return Status::Ok();
+}
+
+Status AddWorldSpec(const std::string& spec, ServerConfig& config) {
+  std::vector<std::string> parts;
+  std::stringstream stream(spec);
+  for (std::string part; std::getline(stream, part, ':');) parts.push_back(part);
+  const std::string usage =
+      "--world: expected NAME:SEED:MIN_DISTANCE:ALGORITHM[:DENSITY], got '" + spec + "'";
+  if (parts.size() < 4 || parts.size() > 5 || parts[0].empty()) return InvalidArgument(usage);
+  uint64_t seed = 0;
+  const auto [end, error] =
+      std::from_chars(parts[1].data(), parts[1].data() + parts[1].size(), seed);
+  if (error != std::errc() || end != parts[1].data() + parts[1].size()) {
+    return InvalidArgument(usage + " (seed must be in 0..2^64-1)");
+  }
+  try {
+    const double min_distance = std::stod(parts[2]);
+    const double density = parts.size() == 5 ? std::stod(parts[4]) : 2.0;
+    StatusOr<World> world =
+        WorldFromFields("--world " + parts[0], seed, min_distance, parts[3], density);
+    if (!world.ok()) return world.status();
+    config.worlds[parts[0]] = *world;
+  } catch (const std::exception&) {
+    return InvalidArgument(usage + " (min_distance and density must be numbers)");
+  }
+  return Status::Ok();
+}
+
+Status ValidateConfig(const ServerConfig& config) {
+  if (config.threads < 1 || config.threads > 256) {
+    return InvalidArgument("threads: must be in 1..256");
+  }
+  if (config.cache_megabytes < 0) return InvalidArgument("cache_megabytes: must be >= 0");
+  // 24 bytes a point: 2^17 points is 3 MB, under gRPC's default 4 MB receive
+  // limit, so a full page reaches clients that never raised theirs.
+  if (config.max_page_size < 1 || config.max_page_size > (1 << 17)) {
+    return InvalidArgument("max_page_size: must be in 1..131072");
+  }
+  for (const auto& [name, value] : {std::pair{"max_query_area", config.max_query_area},
+                                    {"max_stream_area", config.max_stream_area},
+                                    {"max_verify_area", config.max_verify_area}}) {
+    if (!(value > 0 && value <= 1e12)) {
+      return InvalidArgument(std::string(name) + ": must be in (0, 1e12] (units of d^2)");
+    }
+  }
+  if (config.max_in_flight < 1) return InvalidArgument("max_in_flight: must be >= 1");
+  if (!(config.grace_seconds >= 0 && config.grace_seconds <= 3600)) {
+    return InvalidArgument("grace_seconds: must be in [0, 3600]");
+  }
+  if (!(config.drain_seconds >= 0 && config.drain_seconds <= 3600)) {
+    return InvalidArgument("drain_seconds: must be in [0, 3600]");
+  }
+  if (!config.worlds.contains(config.default_world)) {
+    return InvalidArgument("default_world: no world named '" + config.default_world + "'");
+  }
+  return Status::Ok();
+}
+
+}  // namespace scallop::server

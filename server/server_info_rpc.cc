@@ -1,0 +1,26 @@
+// GetServerInfo: the generator version, the limits and the configured worlds.
+#include "scallop/plane/region_layout.h"
+#include "scallop_service.h"
+
+namespace scallop::server {
+
+grpc::ServerUnaryReactor* ScallopService::GetServerInfo(grpc::CallbackServerContext* context,
+                                                        const v1::GetServerInfoRequest*,
+                                                        v1::GetServerInfoResponse* response) {
+  return RunUnary(context, "GetServerInfo", [this, response](RequestLog&) {
+    response->set_generator_version(kGeneratorVersion);
+    response->set_region_side_in_d(kRegionSideInD);
+    response->set_precision_range_in_d(kPrecisionRangeInD);
+    v1::Limits& limits = *response->mutable_limits();
+    limits.set_max_page_size(config_.max_page_size);
+    limits.set_max_query_area(config_.max_query_area);
+    limits.set_max_stream_area(config_.max_stream_area);
+    limits.set_max_verify_area(config_.max_verify_area);
+    limits.set_max_in_flight(config_.max_in_flight);
+    response->set_default_world(worlds_.default_name());
+    for (const std::string& name : worlds_.names()) response->add_world_names(name);
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace scallop::server

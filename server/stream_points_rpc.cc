@@ -1,0 +1,124 @@
+// StreamPoints: a large rectangle one region at a time. The next chunk is
+// computed only when the previous write is done (OnWriteDone), so a slow
+// reader holds back the server instead of filling its memory, and a cancelled
+// or expired call stops the work at the next chunk.
+#include <boost/asio/post.hpp>
+
+#include "query_limits.h"
+#include "scallop/plane/region_layout.h"
+#include "scallop_service.h"
+#include "status_mapping.h"
+#include "world_messages.h"
+
+namespace scallop::server {
+
+class StreamPointsReactor final : public grpc::ServerWriteReactor<v1::PointsChunk> {
+ public:
+  StreamPointsReactor(ScallopService& service, grpc::CallbackServerContext* context,
+                      const v1::StreamPointsRequest& request)
+      : service_(service), context_(context), log_("StreamPoints") {
+    if (!service_.in_flight_.TryAdmit()) {
+      FinishWith(ScallopService::Overloaded(service_.in_flight_.limit()));
+      return;
+    }
+    admitted_ = true;
+    if (grpc::Status status = Prepare(request); !status.ok()) {
+      FinishWith(status);
+      return;
+    }
+    ScheduleNextChunk();
+  }
+
+  void OnWriteDone(bool ok) override {
+    if (!ok) {
+      FinishWith({grpc::StatusCode::CANCELLED, "stream: the client went away"});
+      return;
+    }
+    ScheduleNextChunk();
+  }
+
+  void OnDone() override { delete this; }
+
+ private:
+  grpc::Status Prepare(const v1::StreamPointsRequest& request) {
+    ResolvedWorld resolved;
+    if (grpc::Status status = service_.worlds_.Resolve(request, resolved); !status.ok()) {
+      return status;
+    }
+    world_ = resolved.world;
+    log_.set_world(scallop::DescribeWorld(world_));
+    rect_ = RectFromMessage(request.rect());
+    log_.set_rect(rect_);
+    if (grpc::Status status = CheckQueryRect(service_.engine_, world_, request.has_rect(), rect_,
+                                             service_.config_.max_stream_area, "max_stream_area");
+        !status.ok()) {
+      return status;
+    }
+    const RegionLayout layout(world_.min_distance);
+    low_ = layout.RegionOf(rect_.x0, rect_.y0);
+    high_ = layout.RegionOf(std::nextafter(rect_.x1, rect_.x0), std::nextafter(rect_.y1, rect_.y0));
+    next_ = low_;
+    return grpc::Status::OK;
+  }
+
+  void ScheduleNextChunk() {
+    boost::asio::post(service_.request_pool_, [this] { WriteNextChunk(); });
+  }
+
+  // Regions in the order GetPoints returns them (rows, then columns), so the
+  // stream's concatenation equals the unary answer. Skips regions with no
+  // point inside the rectangle.
+  void WriteNextChunk() {
+    const RegionLayout layout(world_.min_distance);
+    while (true) {
+      if (context_->IsCancelled()) {
+        FinishWith({grpc::StatusCode::CANCELLED, "stream: cancelled or past its deadline"});
+        return;
+      }
+      if (next_.j > high_.j) {
+        FinishWith(grpc::Status::OK);
+        return;
+      }
+      const RegionKey key = next_;
+      next_ = key.i < high_.i ? RegionKey{key.i + 1, key.j} : RegionKey{low_.i, key.j + 1};
+      const Rect owned = layout.RegionRect(key);
+      const Rect part{std::max(rect_.x0, owned.x0), std::max(rect_.y0, owned.y0),
+                      std::min(rect_.x1, owned.x1), std::min(rect_.y1, owned.y1)};
+      StatusOr<PlanePoints> points = service_.engine_.Points(world_, part);
+      if (!points.ok()) {
+        FinishWith(ToGrpcStatus(points.status()));
+        return;
+      }
+      if (points->ids.empty()) continue;
+      chunk_.Clear();
+      AppendPoints(*points, 0, points->ids.size(), *chunk_.mutable_points());
+      chunk_.set_region_i(key.i);
+      chunk_.set_region_j(key.j);
+      log_.add_points(static_cast<int64_t>(points->ids.size()));
+      StartWrite(&chunk_);
+      return;
+    }
+  }
+
+  void FinishWith(const grpc::Status& status) {
+    log_.Finish(status);
+    if (admitted_) service_.in_flight_.Release();
+    Finish(status);
+  }
+
+  ScallopService& service_;
+  grpc::CallbackServerContext* context_;
+  RequestLog log_;
+  bool admitted_ = false;
+  World world_;
+  Rect rect_;
+  RegionKey low_, high_, next_;
+  v1::PointsChunk chunk_;  // the chunk being written; reused, alive until OnWriteDone
+};
+
+grpc::ServerWriteReactor<v1::PointsChunk>* ScallopService::StreamPoints(
+    grpc::CallbackServerContext* context, const v1::StreamPointsRequest* request) {
+  return new StreamPointsReactor(*this, context, *request);
+}
+
+}  // namespace scallop::server

@@ -1,0 +1,55 @@
+// Verify: the CGAL Delaunay verifier on a rectangle of a world (plus its 2 d
+// halo), reported field by field.
+#include <algorithm>
+#include <cmath>
+
+#include "query_limits.h"
+#include "scallop/plane/world_verifier.h"
+#include "scallop_service.h"
+#include "status_mapping.h"
+#include "world_messages.h"
+
+namespace scallop::server {
+
+grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* context,
+                                                 const v1::VerifyRequest* request,
+                                                 v1::VerifyResponse* response) {
+  return RunUnary(context, "Verify", [this, request, response](RequestLog& log) {
+    ResolvedWorld resolved;
+    if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
+    const World& world = resolved.world;
+    log.set_world(scallop::DescribeWorld(world));
+    const Rect rect = RectFromMessage(request->rect());
+    log.set_rect(rect);
+    if (grpc::Status status = CheckQueryRect(engine_, world, request->has_rect(), rect,
+                                             config_.max_verify_area, "max_verify_area");
+        !status.ok()) {
+      return status;
+    }
+    StatusOr<VerifyReport> report = VerifyWorldRect(engine_, world, rect);
+    if (!report.ok()) return ToGrpcStatus(report.status());
+    const double d = world.min_distance, halo = 2 * d;
+    const double max_abs =
+        std::max({std::abs(rect.x0), std::abs(rect.x1), std::abs(rect.y0), std::abs(rect.y1)}) +
+        halo;
+    *response->mutable_world() = WorldToMessage(world);
+    response->set_points_checked(report->points_checked);
+    response->set_pairs_checked(report->pairs_checked);
+    response->set_min_distance(report->min_distance);
+    response->set_spacing_violations(report->spacing_violations);
+    response->set_largest_empty_circle(report->largest_empty_circle);
+    response->set_largest_empty_centre_x(report->largest_empty_centre.x);
+    response->set_largest_empty_centre_y(report->largest_empty_centre.y);
+    response->set_pairs_across_seams(report->pairs_across_seams);
+    response->set_min_distance_across_seams(report->min_distance_across_seams);
+    response->set_spacing_violations_across_seams(report->spacing_violations_across_seams);
+    response->set_spacing_ok(report->spacing_ok);
+    response->set_maximal_ok(report->maximal_ok);
+    response->set_maximality_tolerance(MaximalityTolerance(d, max_abs));
+    response->set_passed(report->passed());
+    log.add_points(report->points_checked);
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace scallop::server

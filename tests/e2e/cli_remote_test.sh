@@ -1,0 +1,135 @@
+#!/usr/bin/env bash
+# End-to-end checks of the CLI's server commands against a real scallopd:
+# `scallop points` and `scallop stream` print exactly what `scallop plane`
+# prints, the formats, and the exit codes (0 ok, 1 server error, 2 bad args).
+# Usage: cli_remote_test.sh path/to/scallop path/to/scallopd
+set -euo pipefail
+
+scallop=${1:?usage: cli_remote_test.sh path/to/scallop path/to/scallopd}
+scallopd=${2:?usage: cli_remote_test.sh path/to/scallop path/to/scallopd}
+work=$(mktemp -d)
+server_pid=
+cleanup() {
+  if [ -n "$server_pid" ]; then kill "$server_pid" 2>/dev/null || true; fi
+  rm -rf "$work"
+}
+trap cleanup EXIT
+passed=0
+failed=0
+pass() { passed=$((passed + 1)); }
+fail() {
+  failed=$((failed + 1))
+  echo "FAIL: $*" >&2
+}
+# run COMMAND...: stdout in $work/out, stderr in $work/err, exit code in $status.
+run() {
+  status=0
+  "$@" >"$work/out" 2>"$work/err" || status=$?
+}
+expect_status() {
+  local want=$1 what=$2
+  if [ "$status" -eq "$want" ]; then pass; else fail "$what: exit $status, want $want ($(cat "$work/err"))"; fi
+}
+
+# Start on a free port (port 0) and read the address it prints.
+mkfifo "$work/address"
+"$scallopd" --listen 127.0.0.1:0 --world coast:7:1:a3 >"$work/address" 2>"$work/server.log" &
+server_pid=$!
+read -r line <"$work/address"
+server=${line#scallopd listening on }
+for _ in $(seq 100); do
+  "$scallop" info --server "$server" >/dev/null 2>&1 && break
+  sleep 0.1
+done
+
+rect=-37.5,-20.25,41,50
+run "$scallop" plane --seed 7 --rect "$rect"
+cp "$work/out" "$work/plane.csv"
+run "$scallop" points --server "$server" --seed 7 --rect "$rect"
+expect_status 0 "points"
+if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "points CSV differs from plane"; fi
+run "$scallop" points --server "$server" --seed 7 --rect "$rect" --page-size 113
+if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "paged points CSV differs from plane"; fi
+run "$scallop" stream --server "$server" --seed 7 --rect "$rect"
+expect_status 0 "stream"
+if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "stream CSV differs from plane"; fi
+run "$scallop" points --server "$server" --world coast --rect "$rect"
+if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "named world differs from its inline twin"; fi
+
+run "$scallop" plane --seed 7 --rect "$rect" --format json
+cp "$work/out" "$work/plane.json"
+run "$scallop" stream --server "$server" --seed 7 --rect "$rect" --format json
+if cmp -s "$work/out" "$work/plane.json"; then pass; else fail "stream JSON differs from plane"; fi
+run "$scallop" points --server "$server" --world coast --rect "$rect" --format svg --seams
+expect_status 0 "svg"
+if grep -q "<circle" "$work/out" && grep -q "<line" "$work/out"; then pass; else fail "svg lacks points or seams"; fi
+
+run "$scallop" verify --server "$server" --seed 7 --rect -30,-30,30,30 --json
+expect_status 0 "remote verify"
+if grep -q '"passed":true' "$work/out"; then pass; else fail "remote verify did not pass"; fi
+cp "$work/out" "$work/remote-verify.json"
+run "$scallop" verify --seed 7 --rect -30,-30,30,30 --json
+if cmp -s "$work/out" "$work/remote-verify.json"; then pass; else fail "remote verify report differs from local"; fi
+run "$scallop" info --server "$server" --world coast
+expect_status 0 "info"
+if grep -q "SERVING" "$work/out" && grep -q "seed=7" "$work/out"; then pass; else fail "info output"; fi
+
+# Server errors: exit 1, the code and message on stderr.
+run "$scallop" points --server "$server" --seed 7 --rect 1e10,0,1.00001e10,10
+expect_status 1 "beyond the precision range"
+if grep -q "OUT_OF_RANGE: rect.x0" "$work/err"; then pass; else fail "OUT_OF_RANGE message: $(cat "$work/err")"; fi
+run "$scallop" points --server "$server" --world atlantis --rect 0,0,1,1
+expect_status 1 "unknown world"
+if grep -q "NOT_FOUND: world_name" "$work/err"; then pass; else fail "NOT_FOUND message"; fi
+run "$scallop" points --server "$server" --seed 7 --rect 0,0,5000,5000
+expect_status 1 "area over the limit"
+# Bad arguments: exit 2 without a call.
+run "$scallop" points --server "$server" --seed 7 --rect 5,0,1,1
+expect_status 2 "inverted rect"
+run "$scallop" points --server "$server" --min-distance 0 --rect 0,0,1,1
+expect_status 2 "zero d"
+run "$scallop" points --rect 0,0,1,1
+expect_status 2 "missing --server"
+run "$scallop" points --server "$server" --world coast --seed 3 --rect 0,0,1,1
+expect_status 2 "--world with --seed"
+# An unreachable server is an error status (UNAVAILABLE), exit 1.
+run "$scallop" points --server 127.0.0.1:1 --rect 0,0,1,1 --timeout 2
+expect_status 1 "unreachable server"
+
+# A YAML config: its worlds and limits are served; a bad one exits 2 naming the key.
+cat >"$work/config.yaml" <<'YAML'
+listen: 127.0.0.1:0
+max_page_size: 500
+default_world: dense
+worlds:
+  dense: {seed: 9, min_distance: 0.5, algorithm: a1, density: 1.2}
+YAML
+mkfifo "$work/address2"
+"$scallopd" --config "$work/config.yaml" >"$work/address2" 2>"$work/server2.log" &
+config_pid=$!
+read -r line <"$work/address2"
+configured=${line#scallopd listening on }
+for _ in $(seq 100); do
+  "$scallop" info --server "$configured" >/dev/null 2>&1 && break
+  sleep 0.1
+done
+run "$scallop" info --server "$configured" --json
+if grep -q '"default_world":"dense"' "$work/out" && grep -q '"max_page_size":500' "$work/out" &&
+  grep -q 'density=1.2' "$work/out"; then pass; else fail "config file not applied: $(cat "$work/out")"; fi
+kill -TERM "$config_pid"
+wait "$config_pid" || fail "configured scallopd did not exit 0"
+printf 'listen: 127.0.0.1:0\nmax_pages: 3\n' >"$work/bad.yaml"
+run "$scallopd" --config "$work/bad.yaml"
+expect_status 2 "bad config"
+if grep -q "unknown setting 'max_pages'" "$work/err"; then pass; else fail "bad config message: $(cat "$work/err")"; fi
+run "$scallopd" --world "x:1:0:a3"
+expect_status 2 "bad --world"
+if grep -q "world.min_distance" "$work/err"; then pass; else fail "bad --world message: $(cat "$work/err")"; fi
+
+kill -TERM "$server_pid"
+wait "$server_pid" && server_status=0 || server_status=$?
+server_pid=
+if [ "$server_status" -eq 0 ]; then pass; else fail "scallopd exit $server_status on SIGTERM"; fi
+
+echo "cli_remote_test: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,177 @@
+// End to end: deadlines and cancellation stop a stream mid-way and the server
+// goes on serving; SIGTERM turns health NOT_SERVING, lets in-flight calls
+// finish within the grace period, and exits 0.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <atomic>
+#include <thread>
+
+#include "grpc/health/v1/health.grpc.pb.h"
+#include "scallop/plane/plane_engine.h"
+#include "scallopd_process.h"
+#include "world_messages.h"
+
+namespace scallop::testing {
+namespace {
+
+using std::chrono::milliseconds;
+
+v1::StreamPointsRequest StreamRequest(const Rect& rect) {
+  v1::StreamPointsRequest request;
+  *request.mutable_world() = WorldToMessage(World{.seed = 21});
+  *request.mutable_rect() = RectToMessage(rect);
+  return request;
+}
+
+// Big enough that no test run streams it to the end: 62,500 regions.
+const Rect kHugeRect{0, 0, 4000, 4000};
+
+void ExpectStillServing(client::ScallopClient& client) {
+  v1::GetPointsRequest request;
+  *request.mutable_rect() = RectToMessage({0, 0, 10, 10});
+  v1::GetPointsResponse response;
+  const grpc::Status status = client.GetPoints(request, response);
+  EXPECT_TRUE(status.ok()) << client::DescribeStatus(status);
+}
+
+TEST(E2eLifecycleTest, DeadlineStopsAStreamMidway) {
+  auto server = ScallopdProcess::Start({});
+  ASSERT_NE(server, nullptr);
+  client::ScallopClient client = server->Client();
+  int chunks = 0;
+  const auto start = std::chrono::steady_clock::now();
+  const grpc::Status status = client.StreamPoints(
+      StreamRequest(kHugeRect), [&](const v1::PointsChunk&) { return ++chunks > 0; },
+      {.timeout = milliseconds(500)});
+  const auto elapsed = std::chrono::steady_clock::now() - start;
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+  EXPECT_GT(chunks, 0);
+  EXPECT_LT(elapsed, milliseconds(3000));
+  ExpectStillServing(client);
+  // The server noticed, stopped the stream and logged it.
+  std::string log;
+  for (int attempt = 0; attempt < 750; ++attempt) {
+    log = server->Log();
+    if (log.find("StreamPoints") != std::string::npos) break;
+    std::this_thread::sleep_for(milliseconds(20));
+  }
+  EXPECT_NE(log.find("code=CANCELLED"), std::string::npos) << log;
+}
+
+TEST(E2eLifecycleTest, CancellationStopsAStreamMidway) {
+  auto server = ScallopdProcess::Start({});
+  ASSERT_NE(server, nullptr);
+  client::ScallopClient client = server->Client();
+  int chunks = 0;
+  const grpc::Status status = client.StreamPoints(
+      StreamRequest(kHugeRect), [&](const v1::PointsChunk&) { return ++chunks < 5; });
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::CANCELLED);
+  EXPECT_EQ(chunks, 5);
+  ExpectStillServing(client);
+  std::string log;
+  for (int attempt = 0; attempt < 750; ++attempt) {
+    log = server->Log();
+    if (log.find("StreamPoints") != std::string::npos) break;
+    std::this_thread::sleep_for(milliseconds(20));
+  }
+  EXPECT_NE(log.find("StreamPoints"), std::string::npos);
+  EXPECT_NE(log.find("code=CANCELLED"), std::string::npos) << log;
+}
+
+TEST(E2eLifecycleTest, SigtermGoesNotServingAndFinishesInFlightCallsThenExitsZero) {
+  auto server = ScallopdProcess::Start({"--drain-seconds", "0.3", "--grace-seconds", "30"});
+  ASSERT_NE(server, nullptr);
+  client::ScallopClient client = server->Client();
+  // 2,500 regions, about 550k points: over a second of work, so the stream is
+  // still being generated when the 0.3 s drain ends and Shutdown begins.
+  const Rect rect{-400, -400, 400, 400};
+  PlanePoints streamed;
+  std::atomic<int> chunks{0};
+  grpc::Status stream_status;
+  std::thread reader([&] {
+    stream_status = client.StreamPoints(StreamRequest(rect), [&](const v1::PointsChunk& chunk) {
+      ++chunks;
+      return ReadPoints(chunk.points(), streamed).ok();
+    });
+  });
+  while (chunks < 3) std::this_thread::sleep_for(milliseconds(1));
+  server->Signal(SIGTERM);
+  // During the drain the health check answers NOT_SERVING.
+  bool saw_not_serving = false;
+  for (int attempt = 0; attempt < 50 && !saw_not_serving; ++attempt) {
+    grpc::ClientContext context;
+    grpc::health::v1::HealthCheckResponse health;
+    const grpc::Status status =
+        grpc::health::v1::Health::NewStub(client.channel())->Check(&context, {}, &health);
+    saw_not_serving =
+        status.ok() && health.status() == grpc::health::v1::HealthCheckResponse::NOT_SERVING;
+    std::this_thread::sleep_for(milliseconds(10));
+  }
+  EXPECT_TRUE(saw_not_serving);
+  reader.join();
+  ASSERT_TRUE(stream_status.ok()) << client::DescribeStatus(stream_status);
+  EXPECT_EQ(server->WaitForExit(milliseconds(30000)), 0);
+  // The stream was in flight at the signal, and it was delivered whole.
+  const std::string log = server->Log();
+  ASSERT_NE(log.find("signal 15"), std::string::npos) << log;
+  ASSERT_NE(log.find("StreamPoints"), std::string::npos) << log;
+  EXPECT_LT(log.find("signal 15"), log.find("StreamPoints")) << log;
+  PlaneEngine engine({.threads = 2});
+  StatusOr<PlanePoints> core = engine.Points(World{.seed = 21}, rect);
+  ASSERT_TRUE(core.ok());
+  EXPECT_EQ(core->ids, streamed.ids);
+}
+
+TEST(E2eLifecycleTest, AStalledReaderHoldsTheServerBack) {
+  auto server = ScallopdProcess::Start({});
+  ASSERT_NE(server, nullptr);
+  client::ScallopClient client = server->Client();
+  // Read one chunk, stall for 3 s, cancel. Unthrottled, the server would
+  // generate over a million points in that time (about 480k a second cold on
+  // this machine); with writes paced by OnWriteDone it stops once gRPC's flow
+  // control window (a few MB, some 100k points) is full. gRPC 1.51 reports
+  // the cancel to a server blocked on a write only when that write completes,
+  // about 2 s later here, hence the patient wait for the log line.
+  const grpc::Status status =
+      client.StreamPoints(StreamRequest(kHugeRect), [&](const v1::PointsChunk&) {
+        std::this_thread::sleep_for(milliseconds(3000));
+        return false;
+      });
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::CANCELLED);
+  std::string log;
+  for (int attempt = 0; attempt < 750; ++attempt) {
+    log = server->Log();
+    if (log.find("StreamPoints") != std::string::npos) break;
+    std::this_thread::sleep_for(milliseconds(20));
+  }
+  const size_t at = log.find("points=", log.find("StreamPoints"));
+  ASSERT_NE(at, std::string::npos) << log;
+  const long long points_sent = std::stoll(log.substr(at + 7));
+  EXPECT_LT(points_sent, 500000) << log;
+  ExpectStillServing(client);
+}
+
+TEST(E2eLifecycleTest, CallsOutlivingTheGracePeriodAreCutAndTheServerStillExitsZero) {
+  auto server = ScallopdProcess::Start({"--grace-seconds", "0.5"});
+  ASSERT_NE(server, nullptr);
+  client::ScallopClient client = server->Client();
+  std::atomic<int> chunks{0};
+  grpc::Status stream_status;
+  std::thread reader([&] {
+    stream_status = client.StreamPoints(StreamRequest(kHugeRect), [&](const v1::PointsChunk&) {
+      ++chunks;
+      return true;
+    });
+  });
+  while (chunks < 3) std::this_thread::sleep_for(milliseconds(5));
+  const auto start = std::chrono::steady_clock::now();
+  server->Signal(SIGTERM);
+  EXPECT_EQ(server->WaitForExit(milliseconds(15000)), 0);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, milliseconds(5000));
+  reader.join();
+  EXPECT_FALSE(stream_status.ok());
+}
+
+}  // namespace
+}  // namespace scallop::testing

@@ -1,0 +1,42 @@
+// A real scallopd child process for end-to-end tests: started on a free
+// loopback port (it binds port 0 and prints the address it got), ready once
+// its standard health check says SERVING, killed if a test leaves it running.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scallop_client.h"
+
+namespace scallop::testing {
+
+class ScallopdProcess {
+ public:
+  // Starts SCALLOPD_PATH with `arguments` plus --listen 127.0.0.1:0 and waits
+  // up to 20 s for SERVING. Null (with the reason on stderr) if it fails.
+  static std::unique_ptr<ScallopdProcess> Start(const std::vector<std::string>& arguments);
+  ~ScallopdProcess();
+
+  const std::string& address() const { return address_; }
+  client::ScallopClient Client() const { return client::ScallopClient::Connect(address_); }
+
+  void Signal(int signal_number) const;
+  // The exit code once the process has exited, or -1 after `timeout`
+  // (-2 - signal when it died of a signal).
+  int WaitForExit(std::chrono::milliseconds timeout);
+  // Everything it wrote to stderr (its log) so far.
+  std::string Log() const;
+
+ private:
+  ScallopdProcess() = default;
+
+  int pid_ = -1;
+  int stdout_fd_ = -1;
+  std::string log_path_;
+  std::string address_;
+  bool exited_ = false;
+};
+
+}  // namespace scallop::testing

@@ -1,0 +1,148 @@
+// Golden hashes pin the generator: the exact bits of four fixed regions of a
+// fixed world per algorithm. If one of these changes, the world's points
+// changed, and kGeneratorVersion must be bumped on purpose (see below).
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "scallop/plane/plane_engine.h"
+#include "scallop/plane/point_id.h"
+#include "scallop/plane/region_layout.h"
+#include "scallop/random/rng.h"
+
+namespace scallop {
+namespace {
+
+// HashWords (random/rng.h) folded over a sequence of any length:
+// h = Mix64(h + w + 0x9e3779b97f4a7c15) for each word, from h = 0.
+uint64_t HashSequence(const std::vector<uint64_t>& words) {
+  uint64_t h = 0;
+  for (uint64_t w : words) h = Mix64(h + w + 0x9e3779b97f4a7c15ULL);
+  return h;
+}
+
+// The regions the golden values cover: the origin, one of each other rank
+// ((1,0) rank 1, (1,1) rank 2) and a rank-3 region at negative i ((-3,5)),
+// whose generation reads neighbours of all lower ranks.
+constexpr RegionKey kGoldenRegions[] = {{0, 0}, {1, 0}, {1, 1}, {-3, 5}};
+
+World GoldenWorld(Algorithm algorithm, uint64_t seed = 2026) {
+  World world;
+  world.seed = seed;
+  world.min_distance = 1.0;
+  world.algorithm = algorithm;
+  world.density = UsesDensity(algorithm) ? 1.8 : 2.0;
+  return world;
+}
+
+// The hash of one region as a query returns it: the point count, then for
+// each point in query order the bit patterns of x and y and its id. Taken
+// from Points on the region's rectangle (the public path) after checking it
+// equals Region.
+uint64_t RegionHash(PlaneEngine& engine, const World& world, RegionKey key) {
+  StatusOr<PlanePoints> points =
+      engine.Points(world, RegionLayout(world.min_distance).RegionRect(key));
+  EXPECT_TRUE(points.ok()) << points.status().message();
+  StatusOr<RegionHandle> region = engine.Region(world, key);
+  EXPECT_TRUE(region.ok()) << region.status().message();
+  if (!points.ok() || !region.ok()) return 0;
+  EXPECT_EQ(points->positions, (*region)->points);
+  std::vector<uint64_t> words = {points->positions.size()};
+  for (size_t k = 0; k < points->positions.size(); ++k) {
+    EXPECT_EQ(points->ids[k], EncodePointId(key, static_cast<uint32_t>(k)));
+    words.push_back(std::bit_cast<uint64_t>(points->positions[k].x));
+    words.push_back(std::bit_cast<uint64_t>(points->positions[k].y));
+    words.push_back(points->ids[k]);
+  }
+  return HashSequence(words);
+}
+
+struct Golden {
+  Algorithm algorithm;
+  uint64_t hashes[std::size(kGoldenRegions)];
+};
+
+// Computed once with kGeneratorVersion 1 (Release and the sanitizer build
+// agree: -ffp-contract=off, no -ffast-math). A change of any of these values
+// means the world's points (or their ids) changed: every stored point set
+// and every client's cached ids would silently disagree with the server.
+// If the change is intended, bump kGeneratorVersion (plane/world.h), say in
+// the commit what changed and why, and paste the new values printed by this
+// test. If it is not intended, it is a bug: find it, do not paste. The
+// generator uses no libm trigonometry (base/deterministic_math.h), so these
+// values hold on every IEEE-754 machine (docs/design.md, "Randomness and
+// determinism").
+constexpr Golden kGolden[] = {
+    {Algorithm::kA1,
+     {0xe9bfcd6745d90982ULL, 0x12d5209c99be4080ULL, 0x27d0525d19001262ULL, 0xc4c6044ce69593b7ULL}},
+    {Algorithm::kA2,
+     {0x07f1ef1fb43110daULL, 0xbb071512c48ca39bULL, 0x74a4889662f69f96ULL, 0x2309bd8e0220266cULL}},
+    {Algorithm::kA3,
+     {0x5be9cd272afa3edeULL, 0x48b434514fc16ae5ULL, 0xe05cf1cb3a48a593ULL, 0x6381fb0f642ccca6ULL}},
+};
+
+TEST(PlaneGoldenTest, RegionsOfAFixedWorldHaveTheirPinnedHashes) {
+  // The fold above must be the documented HashWords, or the constants would
+  // pin a private hash nobody can recompute.
+  EXPECT_EQ(HashSequence({1, 2, 3}), HashWords({1, 2, 3}));
+  for (const Golden& golden : kGolden) {
+    const World world = GoldenWorld(golden.algorithm);
+    SCOPED_TRACE(DescribeWorld(world));
+    // One thread and two, cold both times: the hash must not depend on it.
+    for (int threads : {1, 2}) {
+      PlaneEngineOptions options;
+      options.threads = threads;
+      PlaneEngine engine(options);
+      for (size_t n = 0; n < std::size(kGoldenRegions); ++n) {
+        const RegionKey key = kGoldenRegions[n];
+        const uint64_t hash = RegionHash(engine, world, key);
+        EXPECT_EQ(hash, golden.hashes[n])
+            << "region (" << key.i << ", " << key.j << ") of " << DescribeWorld(world) << " with "
+            << threads << " threads: got 0x" << std::hex << hash
+            << "; if this change is intended, bump kGeneratorVersion";
+        if (threads == 1) {
+          std::printf("%s region (%lld, %lld): 0x%016llxULL\n",
+                      std::string(AlgorithmName(golden.algorithm)).c_str(),
+                      static_cast<long long>(key.i), static_cast<long long>(key.j),
+                      static_cast<unsigned long long>(hash));
+        }
+      }
+    }
+  }
+}
+
+// The golden test can fail: another seed, another d or another density gives
+// other hashes for every region (and the regions differ from each other).
+TEST(PlaneGoldenTest, OtherWorldsGiveOtherHashes) {
+  PlaneEngine engine(PlaneEngineOptions{});
+  for (const Golden& golden : kGolden) {
+    const World world = GoldenWorld(golden.algorithm);
+    std::vector<World> others = {GoldenWorld(golden.algorithm, 2027)};
+    World other_d = world;
+    other_d.min_distance = 1.25;
+    others.push_back(other_d);
+    if (UsesDensity(golden.algorithm)) {
+      World other_density = world;
+      other_density.density = 1.7;
+      others.push_back(other_density);
+    }
+    std::vector<uint64_t> mine;
+    for (RegionKey key : kGoldenRegions) mine.push_back(RegionHash(engine, world, key));
+    for (size_t a = 0; a < mine.size(); ++a) {
+      for (size_t b = a + 1; b < mine.size(); ++b) EXPECT_NE(mine[a], mine[b]);
+    }
+    for (const World& other : others) {
+      SCOPED_TRACE(DescribeWorld(other));
+      for (size_t n = 0; n < std::size(kGoldenRegions); ++n) {
+        EXPECT_NE(RegionHash(engine, other, kGoldenRegions[n]), mine[n]);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace scallop
