@@ -386,11 +386,10 @@ inline constexpr double kSinCosPoly[4][8] = {
 //
 // Error bound: sin = h + (tau w + h z S(z)): the parenthesis is below 0.115 of the result and
 // carries <= 4 u of its own error (z, S's evaluation, two products, the sum), i.e. <= 0.46 u of
-// the result; plus the final rounding 0.5 ulp and 2^-57.9 from the fit: < 1 ulp. cos = w + (((1 -
-// w) - z/2) - tau h
-// + z^2 C(z)) with w = 1 - z/2: (1 - w) - z/2 recovers w's rounding exactly (Sterbenz twice),
-// leaving z's own rounding (<= 2^-55 absolute, 0.25 ulp of a result >= 0.70) plus the final
-// rounding: < 0.8 ulp.
+// the result; plus the final rounding 0.5 ulp and 2^-57.9 from the fit: < 1 ulp.
+// cos = w + ((((1 - w) - z/2) - tau h) + z^2 C(z)) with w = 1 - z/2: (1 - w) - z/2 recovers w's
+// rounding exactly (Sterbenz twice), leaving z's own rounding (<= 2^-55 absolute, 0.25 ulp of a
+// result >= 0.70) plus the final rounding: < 0.8 ulp.
 inline double SinOrCosOfReduced(DoubleDouble r, uint64_t kind) {
   const double h = r.hi;
   const double tau = r.lo;
@@ -421,7 +420,6 @@ inline constexpr Double2 kSinCosLanes[6] = {
     {kSinCosPoly[0][0], kSinCosPoly[1][0]}, {kSinCosPoly[0][1], kSinCosPoly[1][1]},
     {kSinCosPoly[0][2], kSinCosPoly[1][2]}, {kSinCosPoly[0][3], kSinCosPoly[1][3]},
     {kSinCosPoly[0][4], kSinCosPoly[1][4]}, {kSinCosPoly[0][5], kSinCosPoly[1][5]}};
-inline constexpr double kSignOfHalfTurn[2] = {1.0, -1.0};
 inline void SinAndCosOfReduced(DoubleDouble r, uint64_t quadrant, double* s, double* c) {
   const double h = r.hi;
   const double tau = r.lo;
@@ -440,8 +438,8 @@ inline void SinAndCosOfReduced(DoubleDouble r, uint64_t quadrant, double* s, dou
   // sin r for n mod 4 = 0..3.
   const double both[2] = {sin_cos[0], sin_cos[1]};
   const uint64_t odd = quadrant & 1u;
-  *s = both[odd] * kSignOfHalfTurn[(quadrant >> 1) & 1u];
-  *c = both[odd ^ 1u] * kSignOfHalfTurn[((quadrant + 1) >> 1) & 1u];
+  *s = both[odd] * kSignOf[(quadrant >> 1) & 1u];
+  *c = both[odd ^ 1u] * kSignOf[((quadrant + 1) >> 1) & 1u];
 }
 
 // sin(t) (cosine false) or cos(t) (cosine true) for every t the quick reduction declines: out of
@@ -667,13 +665,13 @@ inline double DetAcos(double x) {
 //
 // Speed (bench/deterministic_math_bench.cc on a virtual machine with 2 vCPUs of an Intel Xeon,
 // family 6 model 207, shared with other work; GCC 12 -O3; glibc 2.36, which uses its FMA code
-// there). Ratio glibc time / ours, > 1 is faster, ranges over three runs of
-// `deterministic_math_bench --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true
-// --benchmark_report_aggregates_only=true`:
+// there). Ratio glibc time / ours (> 1: faster), fastest of 20 interleaved repetitions, two runs
+// of `deterministic_math_bench --benchmark_repetitions=20 --benchmark_min_time=0.05
+// --benchmark_enable_random_interleaving=true`:
 //   function   throughput   latency        function   throughput   latency
-//   atan2      1.6 - 2.0    1.05 - 1.10    sincos     1.0 - 2.0    1.13 - 1.21
-//   atan       1.0 - 1.3    1.06 - 1.13    asin       1.7 - 2.1    1.23 - 1.37
-//   sin        0.85 - 1.3   1.08 - 1.13    acos       1.6 - 2.2    1.31 - 1.34
-//   cos        1.06 - 1.17  1.12 - 1.16    sin, |t| <= 8 pi: 1.5 - 2.1 and 1.33 - 1.46
-// On an idle core (min of 3000 interleaved trials) sin and cos run at 0.90 - 1.02 of glibc's
-// throughput and 1.04 - 1.10 of its latency: without FMA, this is about glibc's own speed there.
+//   atan2      1.77 - 1.80  1.07 - 1.08    sincos     1.31         1.00 - 1.01
+//   atan       1.02 - 1.09  1.08 - 1.09    asin       1.51 - 1.52  1.17
+//   sin        1.08 - 1.09  1.01           acos       1.66 - 1.71  1.22 - 1.23
+//   cos        1.03 - 1.13  1.07           sin for |t| <= 8 pi: 1.51 - 1.62 and 1.30 - 1.31
+// Medians instead of minima move by up to 15% either way from run to run on this shared machine;
+// sin and cos, which glibc computes with FMA and a table, are the ones that can dip below 1.
