@@ -3,10 +3,10 @@
 #include <chrono>
 #include <iomanip>
 #include <iostream>
-#include <map>
 #include <memory>
 
 #include "commands.h"
+#include "format_options.h"
 #include "point_output.h"
 #include "rect_option.h"
 #include "scallop/analysis/point_statistics.h"
@@ -83,10 +83,7 @@ CommandRunner RegisterGenerate(CLI::App& app) {
   command->add_option("--density", arguments->density, "r'/2r in (1, 2] for a1 and a2")
       ->capture_default_str();
   command->add_option("--seed", arguments->seed, "Random seed")->capture_default_str();
-  std::map<std::string, PointFormat> formats(PointFormatNames().begin(), PointFormatNames().end());
-  command->add_option("--format", arguments->format, "csv, json, svg or none")
-      ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case))
-      ->capture_default_str();
+  AddFormatOption(*command, arguments->format);
   command->add_flag("--stats", arguments->stats,
                     "Print count, rho, seconds and points per second to stderr");
   command->add_option("--dart-failure-limit", arguments->dart_failure_limit,

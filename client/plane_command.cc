@@ -1,10 +1,10 @@
 // `scallop plane`: prints one rectangle of an infinite world, each point with
 // its id, computed locally by a PlaneEngine.
 #include <iostream>
-#include <map>
 #include <memory>
 
 #include "commands.h"
+#include "format_options.h"
 #include "point_output.h"
 #include "scallop/plane/region_layout.h"
 #include "world_options.h"
@@ -44,11 +44,7 @@ CommandRunner RegisterPlane(CLI::App& app) {
   auto arguments = std::make_shared<PlaneArguments>();
   CLI::App* command = app.add_subcommand("plane", "Print a rectangle of an infinite world");
   AddWorldOptions(*command, arguments->world);
-  std::map<std::string, PointFormat> formats(PointFormatNames().begin(), PointFormatNames().end());
-  command->add_option("--format", arguments->format, "csv, json, svg or none")
-      ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case))
-      ->option_text("csv|json|svg|none (default csv)");
-  command->add_flag("--seams", arguments->seams, "svg: draw the region seams (every 16 d)");
+  AddFormatAndSeamsOptions(*command, arguments->format, arguments->seams);
   return [arguments] { return RunPlane(*arguments); };
 }
 

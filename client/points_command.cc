@@ -1,10 +1,10 @@
 // `scallop points`: a rectangle of a world from scallopd's GetPoints, page by
 // page, printed as `scallop plane` prints it.
 #include <iostream>
-#include <map>
 #include <memory>
 
 #include "commands.h"
+#include "format_options.h"
 #include "remote_options.h"
 #include "remote_points_output.h"
 
@@ -48,11 +48,7 @@ CommandRunner RegisterPoints(CLI::App& app) {
   CLI::App* command = app.add_subcommand("points", "A rectangle of a world, from scallopd (paged)");
   AddWorldOptions(*command, arguments->world);
   AddRemoteOptions(*command, arguments->remote);
-  std::map<std::string, PointFormat> formats(PointFormatNames().begin(), PointFormatNames().end());
-  command->add_option("--format", arguments->format, "csv, json, svg or none")
-      ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case))
-      ->option_text("csv|json|svg|none (default csv)");
-  command->add_flag("--seams", arguments->seams, "svg: draw the region seams (every 16 d)");
+  AddFormatAndSeamsOptions(*command, arguments->format, arguments->seams);
   command->add_option("--page-size", arguments->page_size, "Points per page (0: server's maximum)")
       ->check(CLI::NonNegativeNumber);
   return [arguments] { return RunPoints(*arguments); };

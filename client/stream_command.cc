@@ -3,10 +3,10 @@
 // are whole documents and are written at the end.
 #include <iomanip>
 #include <iostream>
-#include <map>
 #include <memory>
 
 #include "commands.h"
+#include "format_options.h"
 #include "remote_options.h"
 #include "remote_points_output.h"
 
@@ -68,11 +68,7 @@ CommandRunner RegisterStream(CLI::App& app) {
       app.add_subcommand("stream", "A rectangle of a world, from scallopd (streamed by region)");
   AddWorldOptions(*command, arguments->world);
   AddRemoteOptions(*command, arguments->remote);
-  std::map<std::string, PointFormat> formats(PointFormatNames().begin(), PointFormatNames().end());
-  command->add_option("--format", arguments->format, "csv, json, svg or none")
-      ->transform(CLI::CheckedTransformer(formats, CLI::ignore_case))
-      ->option_text("csv|json|svg|none (default csv)");
-  command->add_flag("--seams", arguments->seams, "svg: draw the region seams (every 16 d)");
+  AddFormatAndSeamsOptions(*command, arguments->format, arguments->seams);
   return [arguments] { return RunStream(*arguments); };
 }
 
