@@ -13,14 +13,10 @@ grpc::ServerUnaryReactor* ScallopService::GetPoints(grpc::CallbackServerContext*
                                                     const v1::GetPointsRequest* request,
                                                     v1::GetPointsResponse* response) {
   return RunUnary(context, "GetPoints", [this, request, response](RequestLog& log) {
-    ResolvedWorld resolved;
-    if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
-    const World& world = resolved.world;
-    log.set_world(scallop::DescribeWorld(world));
-    const Rect rect = RectFromMessage(request->rect());
-    log.set_rect(rect);
-    if (grpc::Status status = CheckQueryRect(engine_, world, request->has_rect(), rect,
-                                             config_.max_query_area, "max_query_area");
+    World world;
+    Rect rect;
+    if (grpc::Status status = ResolveQuery(*request, config_.max_query_area, "max_query_area", log,
+                                           world, rect);
         !status.ok()) {
       return status;
     }

@@ -10,10 +10,12 @@
 
 #include "in_flight_limit.h"
 #include "page_token.h"
+#include "query_limits.h"
 #include "request_log.h"
 #include "scallop/plane/plane_engine.h"
 #include "scallop/v1/scallop.grpc.pb.h"
 #include "server_config.h"
+#include "world_messages.h"
 #include "world_registry.h"
 
 namespace scallop::server {
@@ -49,6 +51,21 @@ class ScallopService final : public v1::Scallop::CallbackService {
   grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context, const char* method,
                                      UnaryWork work);
   static grpc::Status Overloaded(int limit);
+
+  // The world and rectangle a query names, resolved, logged and checked
+  // against `max_area` (named `limit_name` in errors): the prelude of every
+  // RPC that reads a rectangle.
+  template <typename Request>
+  grpc::Status ResolveQuery(const Request& request, double max_area, const char* limit_name,
+                            RequestLog& log, World& world, Rect& rect) const {
+    ResolvedWorld resolved;
+    if (grpc::Status status = worlds_.Resolve(request, resolved); !status.ok()) return status;
+    world = resolved.world;
+    log.set_world(scallop::DescribeWorld(world));
+    rect = RectFromMessage(request.rect());
+    log.set_rect(rect);
+    return CheckQueryRect(engine_, world, request.has_rect(), rect, max_area, limit_name);
+  }
 
   const ServerConfig& config_;
   const WorldRegistry& worlds_;

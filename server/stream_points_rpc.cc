@@ -41,16 +41,9 @@ class StreamPointsReactor final : public grpc::ServerWriteReactor<v1::PointsChun
 
  private:
   grpc::Status Prepare(const v1::StreamPointsRequest& request) {
-    ResolvedWorld resolved;
-    if (grpc::Status status = service_.worlds_.Resolve(request, resolved); !status.ok()) {
-      return status;
-    }
-    world_ = resolved.world;
-    log_.set_world(scallop::DescribeWorld(world_));
-    rect_ = RectFromMessage(request.rect());
-    log_.set_rect(rect_);
-    if (grpc::Status status = CheckQueryRect(service_.engine_, world_, request.has_rect(), rect_,
-                                             service_.config_.max_stream_area, "max_stream_area");
+    if (grpc::Status status =
+            service_.ResolveQuery(request, service_.config_.max_stream_area, "max_stream_area", log_,
+                                  world_, rect_);
         !status.ok()) {
       return status;
     }

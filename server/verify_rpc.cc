@@ -15,14 +15,10 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
                                                  const v1::VerifyRequest* request,
                                                  v1::VerifyResponse* response) {
   return RunUnary(context, "Verify", [this, request, response](RequestLog& log) {
-    ResolvedWorld resolved;
-    if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
-    const World& world = resolved.world;
-    log.set_world(scallop::DescribeWorld(world));
-    const Rect rect = RectFromMessage(request->rect());
-    log.set_rect(rect);
-    if (grpc::Status status = CheckQueryRect(engine_, world, request->has_rect(), rect,
-                                             config_.max_verify_area, "max_verify_area");
+    World world;
+    Rect rect;
+    if (grpc::Status status = ResolveQuery(*request, config_.max_verify_area, "max_verify_area",
+                                           log, world, rect);
         !status.ok()) {
       return status;
     }
