@@ -30,4 +30,18 @@ CommandRunner RegisterStream(CLI::App& app);
 // `scallop info`: scallopd's version, limits, worlds and health.
 CommandRunner RegisterInfo(CLI::App& app);
 
+// `scallop nearest`: nearest point id, F1 and F2 at positions, locally or
+// with --server by scallopd.
+CommandRunner RegisterNearest(CLI::App& app);
+
+// `scallop noise`: a noise channel on a grid, rendered as a PNG image.
+CommandRunner RegisterNoise(CLI::App& app);
+
+// `scallop analyze`: periodogram, radial power, anisotropy and spacing
+// statistics of a point set, as images and JSON.
+CommandRunner RegisterAnalyze(CLI::App& app);
+
+// `scallop follow`: replays a path of viewports through scallopd's Follow.
+CommandRunner RegisterFollow(CLI::App& app);
+
 }  // namespace scallop::cli

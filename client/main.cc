@@ -16,6 +16,10 @@ int main(int argc, char** argv) {
       {"points", scallop::cli::RegisterPoints(app)},
       {"stream", scallop::cli::RegisterStream(app)},
       {"info", scallop::cli::RegisterInfo(app)},
+      {"nearest", scallop::cli::RegisterNearest(app)},
+      {"noise", scallop::cli::RegisterNoise(app)},
+      {"analyze", scallop::cli::RegisterAnalyze(app)},
+      {"follow", scallop::cli::RegisterFollow(app)},
   };
   try {
     app.parse(argc, argv);

@@ -41,9 +41,18 @@ class ScallopService final : public v1::Scallop::CallbackService {
   grpc::ServerUnaryReactor* GetServerInfo(grpc::CallbackServerContext* context,
                                           const v1::GetServerInfoRequest* request,
                                           v1::GetServerInfoResponse* response) override;
+  grpc::ServerUnaryReactor* Nearest(grpc::CallbackServerContext* context,
+                                    const v1::NearestRequest* request,
+                                    v1::NearestResponse* response) override;
+  grpc::ServerUnaryReactor* NoiseGrid(grpc::CallbackServerContext* context,
+                                      const v1::NoiseGridRequest* request,
+                                      v1::NoiseGridResponse* response) override;
+  grpc::ServerBidiReactor<v1::FollowRequest, v1::FollowResponse>* Follow(
+      grpc::CallbackServerContext* context) override;
 
  private:
   friend class StreamPointsReactor;
+  friend class FollowReactor;
   using UnaryWork = std::function<grpc::Status(RequestLog& log)>;
 
   // Admits the call (or sheds it with RESOURCE_EXHAUSTED), runs `work` on the

@@ -33,7 +33,8 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
                                     "max_page_size",   "max_query_area",    "max_stream_area",
                                     "max_verify_area", "max_in_flight",     "grace_seconds",
                                     "drain_seconds",   "page_token_secret", "default_world",
-                                    "worlds"};
+                                    "worlds",          "max_nearest_batch", "max_noise_grid_samples",
+                                    "max_follow_area", "follow_stall_seconds"};
   std::string key;
   try {
     const YAML::Node root = YAML::LoadFile(path);
@@ -54,6 +55,10 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
     read("max_stream_area", config.max_stream_area);
     read("max_verify_area", config.max_verify_area);
     read("max_in_flight", config.max_in_flight);
+    read("max_nearest_batch", config.max_nearest_batch);
+    read("max_noise_grid_samples", config.max_noise_grid_samples);
+    read("max_follow_area", config.max_follow_area);
+    read("follow_stall_seconds", config.follow_stall_seconds);
     read("grace_seconds", config.grace_seconds);
     read("drain_seconds", config.drain_seconds);
     read("page_token_secret", config.page_token_secret);
@@ -113,12 +118,23 @@ Status ValidateConfig(const ServerConfig& config) {
   }
   for (const auto& [name, value] : {std::pair{"max_query_area", config.max_query_area},
                                     {"max_stream_area", config.max_stream_area},
-                                    {"max_verify_area", config.max_verify_area}}) {
+                                    {"max_verify_area", config.max_verify_area},
+                                    {"max_follow_area", config.max_follow_area}}) {
     if (!(value > 0 && value <= 1e12)) {
       return InvalidArgument(std::string(name) + ": must be in (0, 1e12] (units of d^2)");
     }
   }
   if (config.max_in_flight < 1) return InvalidArgument("max_in_flight: must be >= 1");
+  // The same 3 MB bound as pages: answers fit gRPC's default receive limit.
+  if (config.max_nearest_batch < 1 || config.max_nearest_batch > (1 << 16)) {
+    return InvalidArgument("max_nearest_batch: must be in 1..65536");
+  }
+  if (config.max_noise_grid_samples < 1 || config.max_noise_grid_samples > (1 << 19)) {
+    return InvalidArgument("max_noise_grid_samples: must be in 1..524288");
+  }
+  if (!(config.follow_stall_seconds > 0 && config.follow_stall_seconds <= 3600)) {
+    return InvalidArgument("follow_stall_seconds: must be in (0, 3600]");
+  }
   if (!(config.grace_seconds >= 0 && config.grace_seconds <= 3600)) {
     return InvalidArgument("grace_seconds: must be in [0, 3600]");
   }

@@ -20,6 +20,11 @@ struct ServerConfig {
   double max_stream_area = 1e8;            // StreamPoints, in d^2
   double max_verify_area = 1e6;            // Verify, in d^2 (about 3.5 s on two cores)
   int max_in_flight = 64;                  // concurrent requests before RESOURCE_EXHAUSTED
+  // 24 bytes in and 48 out a position: 2^16 positions is 3 MB of answer.
+  int32_t max_nearest_batch = 1 << 16;     // positions per Nearest call
+  int64_t max_noise_grid_samples = 1 << 19;  // width * height per NoiseGrid call (4 MB)
+  double max_follow_area = 1e5;            // Follow viewport grown by keep_margin, in d^2
+  double follow_stall_seconds = 10;        // a Follow client not reading is dropped after this
   double grace_seconds = 10;               // in-flight requests get this long after SIGTERM
   double drain_seconds = 0;                // NOT_SERVING this long before refusing new calls
   // Key for page tokens. Empty: derived from the world set (see page_token.h).

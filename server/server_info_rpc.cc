@@ -17,6 +17,9 @@ grpc::ServerUnaryReactor* ScallopService::GetServerInfo(grpc::CallbackServerCont
     limits.set_max_stream_area(config_.max_stream_area);
     limits.set_max_verify_area(config_.max_verify_area);
     limits.set_max_in_flight(config_.max_in_flight);
+    limits.set_max_nearest_batch(config_.max_nearest_batch);
+    limits.set_max_noise_grid_samples(config_.max_noise_grid_samples);
+    limits.set_max_follow_area(config_.max_follow_area);
     response->set_default_world(worlds_.default_name());
     for (const std::string& name : worlds_.names()) response->add_world_names(name);
     return grpc::Status::OK;
