@@ -1,0 +1,190 @@
+// NearestLookup: validation, the per-call table of grids (so a batch takes
+// the cache's mutex once per region it visits, not once per position), the
+// shared grid cache and the brute-force fallback.
+#include "scallop/noise/nearest_lookup.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "scallop/noise/cell_value.h"
+#include "scallop/random/rng.h"
+
+namespace scallop {
+namespace {
+
+// Regions -2^28 .. 2^28 - 1 tile [-2^32 d, 2^32 d). A position exactly on
+// the high limit belongs to no region inside the range; its last region's
+// grid reaches 3 d beyond it, so that grid answers it.
+constexpr auto kRegionsPerHalfAxis = static_cast<int64_t>(kPrecisionRangeInD / kRegionSideInD);
+
+RegionKey ClampedRegionOf(const RegionLayout& layout, Vec2 p) {
+  RegionKey key = layout.RegionOf(p.x, p.y);
+  key.i = std::clamp(key.i, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
+  key.j = std::clamp(key.j, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
+  return key;
+}
+
+// `rect` cut to the precision range, where the world has its points.
+Rect ClipToRange(Rect rect, double limit) {
+  return {std::max(rect.x0, -limit), std::max(rect.y0, -limit), std::min(rect.x1, limit),
+          std::min(rect.y1, limit)};
+}
+
+// Direct-mapped table of the grids one call has used. 64 slots hold every
+// region of a 128 d square, so batches over such an area take the shared
+// cache's mutex about once per region.
+constexpr size_t kCallSlots = 64;
+
+size_t CallSlotOf(RegionKey key) {
+  return static_cast<size_t>(
+      Mix64(static_cast<uint64_t>(key.i) * 0x9e3779b97f4a7c15ULL ^ static_cast<uint64_t>(key.j)) &
+      (kCallSlots - 1));
+}
+
+NearestPoint FromTwoNearest(const TwoNearest& best) {
+  return {.id = best.id1,
+          .position = best.point1,
+          .f1 = std::sqrt(best.squared1),
+          .f2 = std::sqrt(best.squared2),
+          .second_id = best.id2,
+          .cell_value = CellValue(best.id1)};
+}
+
+}  // namespace
+
+size_t NearestLookup::KeyHash::operator()(const Key& key) const {
+  return static_cast<size_t>(
+      HashWords({WorldFingerprint(key.world), static_cast<uint64_t>(key.region.i),
+                 static_cast<uint64_t>(key.region.j)}));
+}
+
+NearestLookup::NearestLookup(PlaneEngine& engine, NearestLookupOptions options)
+    : engine_(engine), options_(options) {}
+
+Status NearestLookup::ValidatePosition(const World& world, Vec2 position, size_t index) {
+  const double limit = RegionLayout(world.min_distance).precision_limit();
+  const std::pair<char, double> coordinates[] = {{'x', position.x}, {'y', position.y}};
+  for (const auto& [axis, value] : coordinates) {
+    const std::string field = "positions[" + std::to_string(index) + "]." + axis;
+    if (!std::isfinite(value)) return InvalidArgument(field + ": must be finite");
+    if (std::abs(value) > limit) {
+      return OutOfRange(field +
+                        ": |value| must be at most 2^32 * min_distance = " + std::to_string(limit));
+    }
+  }
+  return Status::Ok();
+}
+
+Status NearestLookup::Nearest(const World& world, std::span<const Vec2> positions,
+                              std::span<NearestPoint> results) {
+  if (Status status = ValidateWorld(world); !status.ok()) return status;
+  if (results.size() != positions.size()) {
+    return InvalidArgument("results: must have one entry per position");
+  }
+  for (size_t k = 0; k < positions.size(); ++k) {
+    if (Status status = ValidatePosition(world, positions[k], k); !status.ok()) return status;
+  }
+  const World canonical = CanonicalWorld(world);
+  const RegionLayout layout(canonical.min_distance);
+  struct CallSlot {
+    RegionKey key;
+    GridHandle grid;
+  };
+  std::array<CallSlot, kCallSlots> slots;
+  int64_t fallbacks = 0;
+  for (size_t k = 0; k < positions.size(); ++k) {
+    const Vec2 p = positions[k];
+    TwoNearest best;
+    bool certified = false;
+    if (options_.method == NearestMethod::kGrid) {
+      const RegionKey key = ClampedRegionOf(layout, p);
+      CallSlot& slot = slots[CallSlotOf(key)];
+      if (!slot.grid || slot.key != key) {
+        StatusOr<GridHandle> grid = Grid(canonical, key);
+        if (!grid.ok()) return grid.status();
+        slot = {key, std::move(*grid)};
+      }
+      certified = slot.grid->FindTwoNearest(p, best);
+      if (!certified) ++fallbacks;
+    }
+    if (!certified) {
+      StatusOr<TwoNearest> exact = BruteForce(canonical, p);
+      if (!exact.ok()) return exact.status();
+      best = *exact;
+    }
+    results[k] = FromTwoNearest(best);
+  }
+  std::lock_guard lock(mutex_);
+  stats_.lookups += static_cast<int64_t>(positions.size());
+  stats_.fallbacks += fallbacks;
+  return Status::Ok();
+}
+
+StatusOr<NearestLookup::GridHandle> NearestLookup::Grid(const World& world, RegionKey region) {
+  const Key key{world, region};
+  {
+    std::lock_guard lock(mutex_);
+    if (auto found = grids_.find(key); found != grids_.end()) {
+      lru_.splice(lru_.begin(), lru_, found->second.lru);
+      return found->second.grid;
+    }
+  }
+  // The grid needs every point of its square grown by 1 d (nearest_search_grid.h).
+  const double d = world.min_distance;
+  const Rect covered = NearestSearchGrid::CoveredSquare(d, region);
+  const Rect source = ClipToRange({covered.x0 - d, covered.y0 - d, covered.x1 + d, covered.y1 + d},
+                                  RegionLayout(d).precision_limit());
+  StatusOr<PlanePoints> points = engine_.Points(world, source);
+  if (!points.ok()) return points.status();
+  auto grid = std::make_shared<const NearestSearchGrid>(d, region, points->positions, points->ids);
+
+  std::lock_guard lock(mutex_);
+  ++stats_.grids_built;
+  auto [entry, inserted] = grids_.try_emplace(key);
+  if (!inserted) return entry->second.grid;  // another thread built the same grid meanwhile
+  lru_.push_front(key);
+  entry->second = {grid, lru_.begin()};
+  stats_.bytes += static_cast<int64_t>(grid->Bytes());
+  while (stats_.bytes > options_.cache_bytes && !lru_.empty()) {
+    auto victim = grids_.find(lru_.back());
+    stats_.bytes -= static_cast<int64_t>(victim->second.grid->Bytes());
+    grids_.erase(victim);
+    lru_.pop_back();
+  }
+  return GridHandle(grid);
+}
+
+StatusOr<TwoNearest> NearestLookup::BruteForce(const World& world, Vec2 p) {
+  const double d = world.min_distance;
+  const double limit = RegionLayout(d).precision_limit();
+  // Squares of side 8 d to 64 d: on a maximal world the first one always
+  // holds the answer (F2 < 2 d); the larger ones only guard against a world
+  // that is not. Every point within (half side - slack) of p is in the
+  // square, despite rounding of its corners (docs/noise.md).
+  for (double half = 4 * d; half <= 32 * d; half *= 2) {
+    const Rect square = ClipToRange({p.x - half, p.y - half, p.x + half, p.y + half}, limit);
+    StatusOr<PlanePoints> points = engine_.Points(world, square);
+    if (!points.ok()) return points.status();
+    TwoNearest best;
+    for (size_t k = 0; k < points->positions.size(); ++k) {
+      const Vec2 q = points->positions[k];
+      OfferCandidate(SquaredDistanceFrom(p, q), points->ids[k], q, best);
+    }
+    const double certified = half - 0x1.0p-12 * d;
+    if (best.squared2 <= certified * certified) return best;
+  }
+  return Status(StatusCode::kInternal,
+                "world has fewer than two points within 32 * min_distance of (" +
+                    std::to_string(p.x) + ", " + std::to_string(p.y) + "): it is not maximal");
+}
+
+NearestLookupStats NearestLookup::Stats() const {
+  std::lock_guard lock(mutex_);
+  NearestLookupStats stats = stats_;
+  stats.grids_cached = static_cast<int64_t>(grids_.size());
+  return stats;
+}
+
+}  // namespace scallop

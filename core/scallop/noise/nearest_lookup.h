@@ -1,0 +1,105 @@
+// NearestLookup: the cellular-noise basis of a world at any positions: the
+// nearest point's id and position, F1, F2 and the cell value, exact and
+// deterministic. Keeps a byte-bounded cache of per-region search grids on
+// top of a PlaneEngine. Thread-safe: one lookup serves every request.
+#pragma once
+
+#include <cstdint>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "scallop/base/status.h"
+#include "scallop/noise/nearest_search_grid.h"
+#include "scallop/plane/plane_engine.h"
+
+namespace scallop {
+
+// The basis at one position. "Nearest" orders points by the squared distance
+// dx*dx + dy*dy computed in doubles (dx = x - point.x), ties by smaller id,
+// so every replica agrees to the bit; f1 and f2 are the square roots of the
+// first two (correctly rounded, hence exact functions of the points).
+struct NearestPoint {
+  uint64_t id = 0;         // nearest point's id (point_id.h)
+  Vec2 position;           // nearest point
+  double f1 = 0;           // distance to it: < d (1 + tolerance) on our maximal worlds
+  double f2 = 0;           // distance to the second nearest: f1 + f2 < 2 d (1 + tolerance)
+  uint64_t second_id = 0;  // second nearest point's id
+  double cell_value = 0;   // CellValue(id), in [0, 1)
+};
+
+enum class NearestMethod {
+  kGrid,        // per-region search grids, falling back to kBruteForce when uncertified
+  kBruteForce,  // every point of growing squares about the position: slow, obviously right
+};
+
+struct NearestLookupOptions {
+  // Budget of the search-grid cache (about 12 KB a region: 64 MB holds 5,000).
+  int64_t cache_bytes = int64_t{64} << 20;
+  NearestMethod method = NearestMethod::kGrid;
+};
+
+struct NearestLookupStats {
+  int64_t lookups = 0;       // positions answered
+  int64_t fallbacks = 0;     // of which by kBruteForce because a grid could not certify
+  int64_t grids_built = 0;   // cache misses
+  int64_t grids_cached = 0;  // grids stored now
+  int64_t bytes = 0;         // their bytes
+};
+
+class NearestLookup {
+ public:
+  // `engine` must outlive the lookup; its region cache supplies the points.
+  explicit NearestLookup(PlaneEngine& engine, NearestLookupOptions options = {});
+  NearestLookup(const NearestLookup&) = delete;
+  NearestLookup& operator=(const NearestLookup&) = delete;
+
+  // The basis at each position: results[k] answers positions[k]. Nothing is
+  // written unless every position is valid.
+  // Rejects: an invalid world (ValidateWorld); INVALID_ARGUMENT for a
+  // non-finite coordinate; OUT_OF_RANGE for |x| or |y| > 2^32 d; errors name
+  // the position, e.g. "positions[3].x".
+  // Cost: about 50 ns a position when its region's grid is cached (once per
+  // run of positions in one region, a mutex and a hash lookup), about 20 us
+  // to build a grid from cached regions, plus generation when cold.
+  Status Nearest(const World& world, std::span<const Vec2> positions,
+                 std::span<NearestPoint> results);
+
+  // The checks Nearest applies to one position; `index` names it in the message.
+  static Status ValidatePosition(const World& world, Vec2 position, size_t index);
+
+  NearestLookupStats Stats() const;
+
+ private:
+  using GridHandle = std::shared_ptr<const NearestSearchGrid>;
+  struct Key {
+    World world;  // canonical
+    RegionKey region;
+    friend bool operator==(const Key&, const Key&) = default;
+  };
+  struct KeyHash {
+    size_t operator()(const Key& key) const;
+  };
+  struct Entry {
+    GridHandle grid;
+    std::list<Key>::iterator lru;
+  };
+
+  // The grid of `region`, from the cache or built (outside the mutex: two
+  // threads may build the same grid at once, and both get identical grids).
+  StatusOr<GridHandle> Grid(const World& world, RegionKey region);
+  // Exact answer from the engine's points in squares of growing side about p.
+  StatusOr<TwoNearest> BruteForce(const World& world, Vec2 p);
+
+  PlaneEngine& engine_;
+  const NearestLookupOptions options_;
+  mutable std::mutex mutex_;
+  std::unordered_map<Key, Entry, KeyHash> grids_;  // looked up only: order never reaches output
+  std::list<Key> lru_;                             // front: most recently used
+  NearestLookupStats stats_;
+};
+
+}  // namespace scallop

@@ -1,0 +1,130 @@
+// NearestSearchGrid on synthetic point sets, where the oracle is a plain
+// scan of the same set: exact ties on an integer lattice (broken by the
+// smaller id), and sparse random subsets, where the grid must either give
+// the exact answer or refuse to certify one.
+#include "scallop/noise/nearest_search_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "scallop/random/rng.h"
+
+namespace scallop {
+namespace {
+
+struct PointSet {
+  std::vector<Vec2> points;
+  std::vector<uint64_t> ids;
+};
+
+TwoNearest ScanAll(const PointSet& set, Vec2 p) {
+  TwoNearest best;
+  for (size_t k = 0; k < set.points.size(); ++k) {
+    const double dx = p.x - set.points[k].x, dy = p.y - set.points[k].y;
+    const double s = dx * dx + dy * dy;
+    // Written without OfferCandidate: (s, id) lexicographic, kept sorted.
+    auto before = [](double s1, uint64_t i1, double s2, uint64_t i2) {
+      return s1 < s2 || (s1 == s2 && i1 < i2);
+    };
+    if (before(s, set.ids[k], best.squared1, best.id1)) {
+      best.squared2 = best.squared1, best.id2 = best.id1, best.point2 = best.point1;
+      best.squared1 = s, best.id1 = set.ids[k], best.point1 = set.points[k];
+    } else if (before(s, set.ids[k], best.squared2, best.id2)) {
+      best.squared2 = s, best.id2 = set.ids[k], best.point2 = set.points[k];
+    }
+  }
+  return best;
+}
+
+bool Same(const TwoNearest& a, const TwoNearest& b) {
+  return a.id1 == b.id1 && a.id2 == b.id2 && a.squared1 == b.squared1 && a.squared2 == b.squared2;
+}
+
+// An integer lattice (d = 1) over region (0, 0) and its margin, with ids
+// shuffled so that "smaller id" is not "first scanned".
+PointSet Lattice(uint64_t seed) {
+  PointSet set;
+  for (int y = -4; y < 20; ++y) {
+    for (int x = -4; x < 20; ++x) set.points.push_back({x + 0.0, y + 0.0});
+  }
+  for (size_t k = 0; k < set.points.size(); ++k) set.ids.push_back(k);
+  Rng rng(seed);
+  for (size_t k = set.ids.size(); k > 1; --k) std::swap(set.ids[k - 1], set.ids[rng.Below(k)]);
+  return set;
+}
+
+TEST(NearestSearchGridTest, TiesOnALatticeGoToTheSmallerId) {
+  for (uint64_t seed = 1; seed <= 5; ++seed) {
+    const PointSet set = Lattice(seed);
+    const NearestSearchGrid grid(1.0, {0, 0}, set.points, set.ids);
+    Rng rng(seed);
+    int ties = 0;
+    for (int k = 0; k < 2000; ++k) {
+      // Cell centres (four-way ties), edge midpoints (two-way) and lattice points.
+      const double x = static_cast<double>(rng.Below(16)) + 0.5 * static_cast<double>(rng.Below(2));
+      const double y = static_cast<double>(rng.Below(16)) + 0.5 * static_cast<double>(rng.Below(2));
+      TwoNearest found;
+      ASSERT_TRUE(grid.FindTwoNearest({x, y}, found)) << x << ", " << y;
+      const TwoNearest truth = ScanAll(set, {x, y});
+      EXPECT_TRUE(Same(truth, found)) << "seed " << seed << " at " << x << ", " << y;
+      if (found.squared1 == found.squared2) ++ties;
+    }
+    EXPECT_GT(ties, 500);
+  }
+}
+
+TEST(NearestSearchGridTest, CertifiedAnswersAreExactOnSparseSubsets) {
+  int certified = 0, refused = 0;
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    Rng rng(seed);
+    // Random points at density from about 1 per d^2 down to 1 per 25 d^2.
+    const double density = 1.0 / (1.0 + static_cast<double>(seed % 5) * 6.0);
+    PointSet set;
+    const int count = static_cast<int>(24 * 24 * density);
+    for (int k = 0; k < count; ++k) {
+      set.points.push_back({rng.Uniform(-4, 20), rng.Uniform(-4, 20)});
+      set.ids.push_back(rng.NextBits());
+    }
+    const NearestSearchGrid grid(1.0, {0, 0}, set.points, set.ids);
+    for (int k = 0; k < 500; ++k) {
+      const Vec2 p{rng.Uniform(-3, 19), rng.Uniform(-3, 19)};
+      TwoNearest found;
+      if (!grid.FindTwoNearest(p, found)) {
+        ++refused;
+        continue;
+      }
+      ++certified;
+      EXPECT_TRUE(Same(ScanAll(set, p), found)) << "seed " << seed << " at " << p.x << ", " << p.y;
+    }
+  }
+  EXPECT_GT(certified, 1000);
+  EXPECT_GT(refused, 1000);  // sparse sets often need cells beyond the grid
+}
+
+// With fewer than two points within reach, or a position whose cells leave
+// the grid, the search must refuse rather than answer.
+TEST(NearestSearchGridTest, RefusesRatherThanAnswerWhenPointsAreMissing) {
+  const PointSet set = Lattice(9);
+  const Vec2 p{7.2, 7.7};
+  PointSet lonely;  // only the one nearest point
+  for (size_t k = 0; k < set.points.size(); ++k) {
+    if (SquaredDistance(set.points[k], p) < 0.3) {
+      lonely.points.push_back(set.points[k]);
+      lonely.ids.push_back(set.ids[k]);
+    }
+  }
+  ASSERT_EQ(lonely.points.size(), 1u);
+  TwoNearest found;
+  EXPECT_FALSE(NearestSearchGrid(1.0, {0, 0}, lonely.points, lonely.ids).FindTwoNearest(p, found));
+  EXPECT_FALSE(NearestSearchGrid(1.0, {0, 0}, {}, {}).FindTwoNearest(p, found));
+  // Positions whose 3x3 block leaves the grid are refused too.
+  const NearestSearchGrid full(1.0, {0, 0}, set.points, set.ids);
+  EXPECT_FALSE(full.FindTwoNearest({-2.5, 5}, found));
+  EXPECT_FALSE(full.FindTwoNearest({5, 19.5}, found));
+  EXPECT_TRUE(full.FindTwoNearest({-1.5, 17.5}, found));
+}
+
+}  // namespace
+}  // namespace scallop
