@@ -1,0 +1,96 @@
+// ViewportTracker: what one follower of a moving viewport already holds, so a
+// stream sends each point once while its region stays kept and tells the
+// follower which regions to drop. Pure bookkeeping (no generation, no gRPC):
+// the server's Follow call drives it, and tests drive it directly.
+#pragma once
+
+#include <bitset>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "scallop/base/status.h"
+#include "scallop/geometry/rect.h"
+#include "scallop/geometry/vec2.h"
+#include "scallop/plane/plane_engine.h"
+#include "scallop/plane/region_layout.h"
+#include "scallop/plane/world.h"
+
+namespace scallop {
+
+// A 16 d square holds at most 296 points d apart (the hexagonal packing
+// bound), so one bit per point index fits in 296 bits.
+inline constexpr int kMaxPointsPerRegion = 296;
+
+// One viewport update, as the follower states it.
+struct ViewportUpdate {
+  Rect viewport{};                        // half-open, what the follower shows now
+  Vec2 velocity{};                        // world units per second; (0, 0): not moving
+  double keep_margin = 0.0;               // regions touching the viewport grown by this are kept
+  std::vector<RegionKey> held_regions{};  // regions the follower holds whole already
+};
+
+// Seconds of motion the prefetch looks ahead, and its cap: the predicted
+// viewport is moved by velocity * kPrefetchSeconds, but at most one viewport
+// width (height) on each axis, so it always touches the current one (no
+// unprefetched gap in between) and a wrong guess wastes one viewport of work.
+inline constexpr double kPrefetchSeconds = 1.0;
+
+// Checks an update of `world` (which must be valid) against max_area, in
+// units of d^2, for the viewport grown by keep_margin, and against the
+// regions that grown viewport crosses (at most max_area / 64 + 16, as for
+// the other rectangle queries). Errors name the field:
+// INVALID_ARGUMENT "viewport.x0: must be finite", "viewport: x0 must be less
+// than x1", "velocity_x: must be finite", "keep_margin: must be finite and
+// >= 0", "viewport grown by keep_margin: area is ... (max_follow_area)";
+// OUT_OF_RANGE "viewport.y1: |value| must be at most 2^32 * min_distance".
+// O(1).
+Status ValidateViewportUpdate(const World& world, const ViewportUpdate& update, double max_area);
+
+// The part of one region's points newly sent to the follower.
+struct RegionChunk {
+  RegionKey key;
+  PlanePoints points;  // in the region's generation order
+};
+
+// Not thread-safe: one tracker per follower, used by one update at a time.
+class ViewportTracker {
+ public:
+  // REQUIRES: ValidateWorld(world).ok().
+  explicit ViewportTracker(const World& world) : world_(world), layout_(world.min_distance) {}
+
+  // Moves to `update`: every region held before and no longer kept (not
+  // touching the viewport grown by keep_margin) is forgotten and returned,
+  // in (i, j) order, for the follower to evict; the kept regions named in
+  // held_regions are marked as wholly sent (held regions not kept are
+  // ignored: the follower may drop them itself). The update must have
+  // passed ValidateViewportUpdate. Cost: O(regions held + held_regions,
+  // times log of the regions held).
+  std::vector<RegionKey> Update(const ViewportUpdate& update);
+
+  // The points of `in_view` not sent yet, grouped by region in the order
+  // they come (PlaneEngine::Points order: regions by row, then column), and
+  // marked as sent. `in_view` must be the world's points in the viewport of
+  // the last Update (PlaneEngine::Points(world, viewport)). INTERNAL when a
+  // point index exceeds kMaxPointsPerRegion (a broken generator). O(points).
+  StatusOr<std::vector<RegionChunk>> TakeUnsent(const PlanePoints& in_view);
+
+  // Regions whose points the follower holds (in whole or in part), in (i, j) order.
+  std::vector<RegionKey> HeldRegions() const;
+
+  // Where to generate ahead of `update`'s motion: the viewport moved by
+  // velocity * kPrefetchSeconds (capped, see above), clipped to the
+  // precision range. None when the update is not moving or the prediction
+  // lies wholly outside the range. O(1).
+  std::optional<Rect> PrefetchArea(const ViewportUpdate& update) const;
+
+ private:
+  using SentPoints = std::bitset<kMaxPointsPerRegion>;
+
+  World world_;
+  RegionLayout layout_;
+  RegionKey keep_low_, keep_high_;        // kept regions: keep_low_ <= key <= keep_high_
+  std::map<RegionKey, SentPoints> sent_;  // ordered, so evictions come in a fixed order
+};
+
+}  // namespace scallop
