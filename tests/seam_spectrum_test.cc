@@ -1,0 +1,187 @@
+// Seamlessness seen in the spectrum: windows centred on region seams and
+// corners of a world against windows inside regions, over many seeds. The
+// radial power and anisotropy must differ by no more than the spread between
+// seeds allows, and planted seam defects must not pass.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "scallop/analysis/periodogram.h"
+#include "scallop/analysis/radial_spectrum.h"
+#include "scallop/plane/plane_engine.h"
+#include "scallop/plane/region_layout.h"
+#include "scallop/random/rng.h"
+#include "scallop/sampling/sampler.h"
+
+namespace scallop {
+namespace {
+
+// d = 1, so regions are 16 x 16. Windows are 8 x 8: inside a region they sit
+// 4 d from every seam, so a defect along seams cannot reach them, not even
+// through the periodogram's wrap-around at the window's edges.
+constexpr double kSide = 16.0, kWindow = 8.0;
+constexpr int kMaxFrequency = 20;  // 2.5 cycles per d
+constexpr int kBandWidth = 2;      // annuli per band: 10 bands of 0.25 / d
+// Fixed before looking at the faults: 10 bands x 2 classes x 2 measures, so a
+// 4-standard-error difference is a 1-in-1000 event for a seamless world.
+constexpr double kMaxZ = 4.0;
+
+enum class WindowClass { kInterior, kSeam, kCorner };
+
+// Four windows of each class in the block [0, 48)^2 of regions, covering every
+// rank: interiors of regions (0,0), (1,0), (0,1), (1,1); the seams between
+// them; the four corners inside the block.
+std::vector<Vec2> WindowCentres(WindowClass window_class) {
+  switch (window_class) {
+    case WindowClass::kInterior:
+      return {{8, 8}, {24, 8}, {8, 24}, {24, 24}};
+    case WindowClass::kSeam:
+      return {{16, 8}, {16, 24}, {8, 16}, {24, 16}};
+    case WindowClass::kCorner:
+      return {{16, 16}, {32, 16}, {16, 32}, {32, 32}};
+  }
+  return {};
+}
+
+enum class Fault { kNone, kGapAlongSeams, kIndependentRegions };
+
+// The points of [0, 48)^2 of world `seed`, or of a planted defect:
+// kGapAlongSeams drops points within d / 2 of a seam; kIndependentRegions
+// samples every region alone, as a naive tiling would, ignoring neighbours.
+std::vector<Vec2> BlockPoints(PlaneEngine& engine, Algorithm algorithm, uint64_t seed,
+                              Fault fault) {
+  const Rect block{0, 0, 3 * kSide, 3 * kSide};
+  std::vector<Vec2> points;
+  if (fault == Fault::kIndependentRegions) {
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        SamplerOptions options;
+        options.algorithm = algorithm;
+        options.domain.rect = {i * kSide, j * kSide, (i + 1) * kSide, (j + 1) * kSide};
+        options.seed = HashWords({seed, uint64_t(i), uint64_t(j)});
+        auto region = Sample(options);
+        EXPECT_TRUE(region.ok());
+        points.insert(points.end(), region->begin(), region->end());
+      }
+    }
+    return points;
+  }
+  auto world = engine.Points(World{.seed = seed, .algorithm = algorithm}, block);
+  EXPECT_TRUE(world.ok()) << world.status().message();
+  for (const Vec2& p : world->positions) {
+    const double to_seam_x = std::abs(p.x - kSide * std::round(p.x / kSide));
+    const double to_seam_y = std::abs(p.y - kSide * std::round(p.y / kSide));
+    if (fault == Fault::kGapAlongSeams && std::min(to_seam_x, to_seam_y) < 0.5) continue;
+    points.push_back(p);
+  }
+  return points;
+}
+
+// Per seed: radial power and anisotropy, in bands, of the average periodogram
+// of that seed's four windows of one class.
+struct BandedSpectrum {
+  std::vector<double> power, anisotropy_db;
+};
+
+BandedSpectrum ClassSpectrum(const std::vector<Vec2>& points, WindowClass window_class) {
+  PeriodogramAverage average;
+  for (const Vec2& centre : WindowCentres(window_class)) {
+    const Rect window{centre.x - kWindow / 2, centre.y - kWindow / 2, centre.x + kWindow / 2,
+                      centre.y + kWindow / 2};
+    std::vector<Vec2> inside;
+    for (const Vec2& p : points) {
+      if (window.Contains(p)) inside.push_back(p);
+    }
+    auto periodogram = ComputePeriodogram(inside, window, kMaxFrequency);
+    EXPECT_TRUE(periodogram.ok()) << periodogram.status().message();
+    EXPECT_TRUE(average.Add(*periodogram).ok());
+  }
+  auto radial = ComputeRadialSpectrum(*average.Mean());
+  EXPECT_TRUE(radial.ok());
+  BandedSpectrum banded;
+  for (size_t start = 0; start < radial->frequency.size(); start += kBandWidth) {
+    double power = 0, anisotropy = 0;
+    for (size_t r = start; r < start + kBandWidth; ++r) {
+      power += radial->mean_power[r] / kBandWidth;
+      anisotropy += radial->anisotropy_db[r] / kBandWidth;
+    }
+    banded.power.push_back(power);
+    banded.anisotropy_db.push_back(anisotropy);
+  }
+  return banded;
+}
+
+// Largest |mean difference| / standard error over seeds, over bands, of the
+// paired per-seed differences between `window_class` and interior windows,
+// for power and anisotropy. Prints the bands for the record.
+double WorstZ(Algorithm algorithm, int seeds, Fault fault, WindowClass window_class) {
+  PlaneEngine engine(PlaneEngineOptions{.threads = 1});
+  const size_t bands = kMaxFrequency / kBandWidth;
+  std::vector<double> sum(2 * bands, 0), squares(2 * bands, 0);
+  for (int s = 0; s < seeds; ++s) {
+    const uint64_t seed = 1000 + s;
+    const std::vector<Vec2> points = BlockPoints(engine, algorithm, seed, fault);
+    const BandedSpectrum inside = ClassSpectrum(points, WindowClass::kInterior);
+    const BandedSpectrum across = ClassSpectrum(points, window_class);
+    for (size_t b = 0; b < bands; ++b) {
+      const double power = across.power[b] - inside.power[b];
+      const double anisotropy = across.anisotropy_db[b] - inside.anisotropy_db[b];
+      sum[b] += power, squares[b] += power * power;
+      sum[bands + b] += anisotropy, squares[bands + b] += anisotropy * anisotropy;
+    }
+  }
+  double worst = 0;
+  std::printf("%s, fault %d, class %d, %d seeds: z per band (power | anisotropy)\n",
+              std::string(AlgorithmName(algorithm)).c_str(), static_cast<int>(fault),
+              static_cast<int>(window_class), seeds);
+  for (size_t i = 0; i < 2 * bands; ++i) {
+    const double mean = sum[i] / seeds;
+    const double variance = (squares[i] - seeds * mean * mean) / (seeds - 1);
+    const double z = mean / std::sqrt(variance / seeds);
+    std::printf(" %+5.1f%s", z, i + 1 == bands ? " |" : "");
+    worst = std::max(worst, std::abs(z));
+  }
+  std::printf("\n");
+  return worst;
+}
+
+// A1 worlds pass at 24 seeds. They are not free of seam structure: the
+// density within d / 4 of a seam is about a third above the mean (see
+// docs/quality.md, "Seams"), but that strip is too thin for 24 seeds of 8 d
+// windows to resolve in the spectrum.
+TEST(SeamSpectrumTest, A1SeamsAndCornersLookLikeRegionInteriors) {
+  const int seeds = 24;
+  EXPECT_LT(WorstZ(Algorithm::kA1, seeds, Fault::kNone, WindowClass::kSeam), kMaxZ);
+  EXPECT_LT(WorstZ(Algorithm::kA1, seeds, Fault::kNone, WindowClass::kCorner), kMaxZ);
+}
+
+// FAILS TODAY, hence disabled: A3 worlds pile points up along seams in layers
+// parallel to them (a rank-0 region is sampled against its edges as against
+// walls, and its neighbours fill in against those points), which lowers the
+// power of seam windows at 0.375..0.5 / d by 6 standard errors. Enable when
+// the generator is fixed; A3SeamLayeringIsDetected below then fails first.
+TEST(SeamSpectrumTest, DISABLED_A3SeamsAndCornersLookLikeRegionInteriors) {
+  const int seeds = 48;
+  EXPECT_LT(WorstZ(Algorithm::kA3, seeds, Fault::kNone, WindowClass::kSeam), kMaxZ);
+  EXPECT_LT(WorstZ(Algorithm::kA3, seeds, Fault::kNone, WindowClass::kCorner), kMaxZ);
+}
+
+// The known A3 seam defect, pinned so that fixing it is noticed: when this
+// fails, enable DISABLED_A3SeamsAndCornersLookLikeRegionInteriors instead.
+TEST(SeamSpectrumTest, A3SeamLayeringIsDetected) {
+  EXPECT_GT(WorstZ(Algorithm::kA3, 48, Fault::kNone, WindowClass::kSeam), kMaxZ);
+}
+
+// The same statistic on planted seam defects must exceed the threshold.
+TEST(SeamSpectrumTest, CatchesPlantedSeamDefects) {
+  const int seeds = 48;
+  EXPECT_GT(WorstZ(Algorithm::kA1, 24, Fault::kGapAlongSeams, WindowClass::kSeam), kMaxZ);
+  EXPECT_GT(WorstZ(Algorithm::kA3, seeds, Fault::kGapAlongSeams, WindowClass::kCorner), kMaxZ);
+  EXPECT_GT(WorstZ(Algorithm::kA3, seeds, Fault::kIndependentRegions, WindowClass::kSeam), kMaxZ);
+  EXPECT_GT(WorstZ(Algorithm::kA1, 24, Fault::kIndependentRegions, WindowClass::kCorner), kMaxZ);
+}
+
+}  // namespace
+}  // namespace scallop
