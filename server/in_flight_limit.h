@@ -3,6 +3,7 @@
 // of growing queues and deadlines missed by everyone.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 
 namespace scallop::server {
@@ -19,6 +20,8 @@ class InFlightLimit {
   }
   void Release() { in_flight_.fetch_sub(1); }
   int limit() const { return limit_; }
+  // Admitted calls now (a refused one may count for an instant: clamped).
+  int in_flight() const { return std::min(in_flight_.load(), limit_); }
 
  private:
   const int limit_;

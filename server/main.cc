@@ -17,7 +17,9 @@
 #include <limits>
 #include <thread>
 
+#include "metrics_http_server.h"
 #include "page_token.h"
+#include "request_metrics.h"
 #include "scallop_service.h"
 #include "server_config.h"
 #include "world_registry.h"
@@ -35,6 +37,8 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
   app.add_option("--config", config_path, "YAML configuration file (flags override it)");
   app.add_option("--listen", flags.listen, "HOST:PORT to listen on (port 0: any free port)")
       ->default_str(config.listen);
+  app.add_option("--metrics-listen", flags.metrics_listen,
+                 "HOST:PORT serving Prometheus metrics at /metrics (port 0: any free port)");
   app.add_option("--threads", flags.threads, "Request threads, and as many generating")
       ->default_str(std::to_string(config.threads));
   app.add_option("--cache-megabytes", flags.cache_megabytes, "Region cache budget")
@@ -75,6 +79,7 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
     if (app.count(flag) > 0) config.*member = flags.*member;
   };
   apply("--listen", &ServerConfig::listen);
+  apply("--metrics-listen", &ServerConfig::metrics_listen);
   apply("--threads", &ServerConfig::threads);
   apply("--cache-megabytes", &ServerConfig::cache_megabytes);
   apply("--max-page-size", &ServerConfig::max_page_size);
@@ -117,7 +122,23 @@ int main(int argc, char** argv) {
                                .threads = config.threads,
                                .max_query_area = std::numeric_limits<double>::infinity()});
   boost::asio::thread_pool request_pool(static_cast<size_t>(config.threads));
-  scallop::server::ScallopService service(config, worlds, page_tokens, engine, request_pool);
+  scallop::server::RequestMetrics metrics;
+  scallop::server::ScallopService service(config, worlds, page_tokens, engine, request_pool,
+                                          &metrics);
+
+  // Bound before the gRPC port, so a bad --metrics-listen fails before the
+  // server announces itself; announced after, so the address line stays first.
+  std::unique_ptr<scallop::server::MetricsHttpServer> metrics_server;
+  if (!config.metrics_listen.empty()) {
+    auto started = scallop::server::MetricsHttpServer::Start(config.metrics_listen, [&] {
+      return metrics.Exposition(engine.CacheStats(), service.requests_in_flight());
+    });
+    if (!started.ok()) {
+      std::cerr << "scallopd: " << started.status().message() << '\n';
+      return 2;
+    }
+    metrics_server = std::move(*started);
+  }
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
@@ -132,6 +153,12 @@ int main(int argc, char** argv) {
   }
   const std::string host = config.listen.substr(0, config.listen.rfind(':'));
   std::cout << "scallopd listening on " << host << ':' << port << std::endl;
+  if (metrics_server) {
+    const std::string metrics_host =
+        config.metrics_listen.substr(0, config.metrics_listen.rfind(':'));
+    std::cout << "scallopd metrics on " << metrics_host << ':' << metrics_server->port()
+              << std::endl;
+  }
   spdlog::info("listening on {}:{}; default world {} ({}); {} threads", host, port,
                config.default_world, scallop::DescribeWorld(config.worlds.at(config.default_world)),
                config.threads);
@@ -153,6 +180,7 @@ int main(int argc, char** argv) {
   signals_context.run();
   server->Wait();
   request_pool.join();
+  if (metrics_server) metrics_server->Stop();
   spdlog::info("stopped");
   return 0;
 }

@@ -8,8 +8,10 @@
 namespace scallop::server {
 
 void RequestLog::Finish(const grpc::Status& status) const {
-  const double milliseconds =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (metrics_ != nullptr) metrics_->Record(method_, status.error_code(), seconds, points_);
+  const double milliseconds = seconds * 1000;
   const std::string rect =
       rect_ ? fmt::format("[{},{})x[{},{})", rect_->x0, rect_->x1, rect_->y0, rect_->y1) : "-";
   if (status.ok()) {

@@ -1,5 +1,6 @@
 // One log line per request: method, world, rectangle, points, milliseconds and
-// status code (with the message when it failed), written when the call ends.
+// status code (with the message when it failed), written when the call ends,
+// and the same call counted in the server's metrics when it has them.
 #pragma once
 
 #include <grpcpp/support/status.h>
@@ -9,24 +10,27 @@
 #include <optional>
 #include <string>
 
+#include "request_metrics.h"
 #include "scallop/geometry/rect.h"
 
 namespace scallop::server {
 
 class RequestLog {
  public:
-  explicit RequestLog(std::string method)
-      : method_(std::move(method)), start_(std::chrono::steady_clock::now()) {}
+  // `metrics` (may be null) must outlive the log.
+  explicit RequestLog(std::string method, RequestMetrics* metrics = nullptr)
+      : method_(std::move(method)), metrics_(metrics), start_(std::chrono::steady_clock::now()) {}
 
   void set_world(std::string description) { world_ = std::move(description); }
   void set_rect(const Rect& rect) { rect_ = rect; }
   void add_points(int64_t count) { points_ += count; }
 
-  // Writes the line. Call once, when the call's status is known.
+  // Writes the line and records the call. Call once, when its status is known.
   void Finish(const grpc::Status& status) const;
 
  private:
   std::string method_;
+  RequestMetrics* metrics_;
   std::chrono::steady_clock::time_point start_;
   std::string world_ = "-";
   std::optional<Rect> rect_;

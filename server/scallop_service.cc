@@ -7,12 +7,13 @@ namespace scallop::server {
 
 ScallopService::ScallopService(const ServerConfig& config, const WorldRegistry& worlds,
                                const PageTokenCodec& page_tokens, PlaneEngine& engine,
-                               boost::asio::thread_pool& request_pool)
+                               boost::asio::thread_pool& request_pool, RequestMetrics* metrics)
     : config_(config),
       worlds_(worlds),
       page_tokens_(page_tokens),
       engine_(engine),
       request_pool_(request_pool),
+      metrics_(metrics),
       in_flight_(config.max_in_flight) {}
 
 grpc::Status ScallopService::Overloaded(int limit) {
@@ -24,7 +25,7 @@ grpc::Status ScallopService::Overloaded(int limit) {
 grpc::ServerUnaryReactor* ScallopService::RunUnary(grpc::CallbackServerContext* context,
                                                    const char* method, UnaryWork work) {
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-  auto log = std::make_shared<RequestLog>(method);
+  auto log = std::make_shared<RequestLog>(method, metrics_);
   if (!in_flight_.TryAdmit()) {
     const grpc::Status status = Overloaded(in_flight_.limit());
     log->Finish(status);

@@ -23,9 +23,10 @@ namespace scallop::server {
 class ScallopService final : public v1::Scallop::CallbackService {
  public:
   // All references must outlive the service; the pool must outlive every call.
+  // `metrics` (may be null: not recorded) counts every finished call.
   ScallopService(const ServerConfig& config, const WorldRegistry& worlds,
                  const PageTokenCodec& page_tokens, PlaneEngine& engine,
-                 boost::asio::thread_pool& request_pool);
+                 boost::asio::thread_pool& request_pool, RequestMetrics* metrics = nullptr);
 
   grpc::ServerUnaryReactor* GetPoints(grpc::CallbackServerContext* context,
                                       const v1::GetPointsRequest* request,
@@ -49,6 +50,9 @@ class ScallopService final : public v1::Scallop::CallbackService {
                                       v1::NoiseGridResponse* response) override;
   grpc::ServerBidiReactor<v1::FollowRequest, v1::FollowResponse>* Follow(
       grpc::CallbackServerContext* context) override;
+
+  // Calls admitted and not yet finished, for the metrics.
+  int requests_in_flight() const { return in_flight_.in_flight(); }
 
  private:
   friend class StreamPointsReactor;
@@ -81,6 +85,7 @@ class ScallopService final : public v1::Scallop::CallbackService {
   const PageTokenCodec& page_tokens_;
   PlaneEngine& engine_;
   boost::asio::thread_pool& request_pool_;
+  RequestMetrics* metrics_;
   InFlightLimit in_flight_;
 };
 

@@ -29,12 +29,24 @@ StatusOr<World> WorldFromFields(const std::string& where, uint64_t seed, double 
 }  // namespace
 
 Status LoadConfigFile(const std::string& path, ServerConfig& config) {
-  const std::set<std::string> known{"listen",          "threads",           "cache_megabytes",
-                                    "max_page_size",   "max_query_area",    "max_stream_area",
-                                    "max_verify_area", "max_in_flight",     "grace_seconds",
-                                    "drain_seconds",   "page_token_secret", "default_world",
-                                    "worlds",          "max_nearest_batch", "max_noise_grid_samples",
-                                    "max_follow_area", "follow_stall_seconds"};
+  const std::set<std::string> known{"listen",
+                                    "threads",
+                                    "cache_megabytes",
+                                    "max_page_size",
+                                    "max_query_area",
+                                    "max_stream_area",
+                                    "max_verify_area",
+                                    "max_in_flight",
+                                    "grace_seconds",
+                                    "drain_seconds",
+                                    "page_token_secret",
+                                    "default_world",
+                                    "worlds",
+                                    "max_nearest_batch",
+                                    "max_noise_grid_samples",
+                                    "max_follow_area",
+                                    "follow_stall_seconds",
+                                    "metrics_listen"};
   std::string key;
   try {
     const YAML::Node root = YAML::LoadFile(path);
@@ -48,6 +60,7 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
       if (root[name]) value = root[name].as<std::decay_t<decltype(value)>>();
     };
     read("listen", config.listen);
+    read("metrics_listen", config.metrics_listen);
     read("threads", config.threads);
     read("cache_megabytes", config.cache_megabytes);
     read("max_page_size", config.max_page_size);

@@ -13,6 +13,7 @@ namespace scallop::server {
 
 struct ServerConfig {
   std::string listen = "127.0.0.1:50051";  // HOST:PORT; port 0 picks a free one
+  std::string metrics_listen;              // HOST:PORT of GET /metrics (Prometheus); empty: off
   int threads = 2;                         // request threads, and as many generating regions
   int64_t cache_megabytes = 512;           // region cache budget (about 20 bytes a point)
   int32_t max_page_size = 65536;           // points per GetPoints page (1.5 MB)
@@ -21,12 +22,12 @@ struct ServerConfig {
   double max_verify_area = 1e6;            // Verify, in d^2 (about 3.5 s on two cores)
   int max_in_flight = 64;                  // concurrent requests before RESOURCE_EXHAUSTED
   // 24 bytes in and 48 out a position: 2^16 positions is 3 MB of answer.
-  int32_t max_nearest_batch = 1 << 16;     // positions per Nearest call
+  int32_t max_nearest_batch = 1 << 16;       // positions per Nearest call
   int64_t max_noise_grid_samples = 1 << 19;  // width * height per NoiseGrid call (4 MB)
-  double max_follow_area = 1e5;            // Follow viewport grown by keep_margin, in d^2
-  double follow_stall_seconds = 10;        // a Follow client not reading is dropped after this
-  double grace_seconds = 10;               // in-flight requests get this long after SIGTERM
-  double drain_seconds = 0;                // NOT_SERVING this long before refusing new calls
+  double max_follow_area = 1e5;              // Follow viewport grown by keep_margin, in d^2
+  double follow_stall_seconds = 10;          // a Follow client not reading is dropped after this
+  double grace_seconds = 10;                 // in-flight requests get this long after SIGTERM
+  double drain_seconds = 0;                  // NOT_SERVING this long before refusing new calls
   // Key for page tokens. Empty: derived from the world set (see page_token.h).
   std::string page_token_secret;
   std::string default_world = "default";

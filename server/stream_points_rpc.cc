@@ -16,7 +16,7 @@ class StreamPointsReactor final : public grpc::ServerWriteReactor<v1::PointsChun
  public:
   StreamPointsReactor(ScallopService& service, grpc::CallbackServerContext* context,
                       const v1::StreamPointsRequest& request)
-      : service_(service), context_(context), log_("StreamPoints") {
+      : service_(service), context_(context), log_("StreamPoints", service.metrics_) {
     if (!service_.in_flight_.TryAdmit()) {
       FinishWith(ScallopService::Overloaded(service_.in_flight_.limit()));
       return;
@@ -41,9 +41,8 @@ class StreamPointsReactor final : public grpc::ServerWriteReactor<v1::PointsChun
 
  private:
   grpc::Status Prepare(const v1::StreamPointsRequest& request) {
-    if (grpc::Status status =
-            service_.ResolveQuery(request, service_.config_.max_stream_area, "max_stream_area", log_,
-                                  world_, rect_);
+    if (grpc::Status status = service_.ResolveQuery(request, service_.config_.max_stream_area,
+                                                    "max_stream_area", log_, world_, rect_);
         !status.ok()) {
       return status;
     }

@@ -16,8 +16,8 @@
 namespace scallop::testing {
 namespace {
 
-// The first line the server prints on stdout: "scallopd listening on HOST:PORT".
-std::string ReadAddressLine(int fd, std::chrono::milliseconds timeout) {
+// One line of `fd`, without its newline; empty after `timeout` or at its end.
+std::string ReadLine(int fd, std::chrono::milliseconds timeout) {
   std::string line;
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (std::chrono::steady_clock::now() < deadline) {
@@ -25,13 +25,17 @@ std::string ReadAddressLine(int fd, std::chrono::milliseconds timeout) {
     if (poll(&ready, 1, 100) <= 0) continue;
     char c;
     if (read(fd, &c, 1) != 1) break;
-    if (c == '\n') {
-      const std::string prefix = "scallopd listening on ";
-      return line.rfind(prefix, 0) == 0 ? line.substr(prefix.size()) : "";
-    }
+    if (c == '\n') return line;
     line.push_back(c);
   }
   return "";
+}
+
+// The first line the server prints on stdout: "scallopd listening on HOST:PORT".
+std::string ReadAddressLine(int fd, std::chrono::milliseconds timeout) {
+  const std::string line = ReadLine(fd, timeout);
+  const std::string prefix = "scallopd listening on ";
+  return line.rfind(prefix, 0) == 0 ? line.substr(prefix.size()) : "";
 }
 
 }  // namespace
@@ -84,6 +88,10 @@ ScallopdProcess::~ScallopdProcess() {
   }
   if (stdout_fd_ >= 0) close(stdout_fd_);
   if (!log_path_.empty()) unlink(log_path_.c_str());
+}
+
+std::string ScallopdProcess::ReadStdoutLine(std::chrono::milliseconds timeout) const {
+  return ReadLine(stdout_fd_, timeout);
 }
 
 void ScallopdProcess::Signal(int signal_number) const { kill(pid_, signal_number); }

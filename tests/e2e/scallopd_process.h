@@ -22,6 +22,10 @@ class ScallopdProcess {
   const std::string& address() const { return address_; }
   client::ScallopClient Client() const { return client::ScallopClient::Connect(address_); }
 
+  // The next line scallopd printed on stdout after the address line (e.g.
+  // "scallopd metrics on HOST:PORT"), or empty after `timeout`.
+  std::string ReadStdoutLine(std::chrono::milliseconds timeout) const;
+
   void Signal(int signal_number) const;
   // The exit code once the process has exited, or -1 after `timeout`
   // (-2 - signal when it died of a signal).
