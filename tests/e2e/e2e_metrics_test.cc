@@ -3,13 +3,9 @@
 // back, and refuses other paths, other methods and a bad listen address.
 #include <gtest/gtest.h>
 
-#include <boost/asio/connect.hpp>
-#include <boost/asio/ip/tcp.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/http.hpp>
-#include <map>
 #include <sstream>
 
+#include "metrics_scrape.h"
 #include "scallopd_process.h"
 #include "world_messages.h"
 
@@ -17,43 +13,6 @@ namespace scallop::testing {
 namespace {
 
 namespace http = boost::beast::http;
-using tcp = boost::asio::ip::tcp;
-
-struct HttpAnswer {
-  int status = 0;
-  std::string content_type;
-  std::string body;
-};
-
-HttpAnswer Fetch(const std::string& host_port, http::verb verb, const std::string& target) {
-  const size_t colon = host_port.rfind(':');
-  boost::asio::io_context context;
-  tcp::resolver resolver(context);
-  boost::beast::tcp_stream stream(context);
-  stream.connect(resolver.resolve(host_port.substr(0, colon), host_port.substr(colon + 1)));
-  http::request<http::empty_body> request(verb, target, 11);
-  request.set(http::field::host, host_port);
-  http::write(stream, request);
-  boost::beast::flat_buffer buffer;
-  http::response_parser<http::string_body> parser;
-  parser.skip(verb == http::verb::head);  // a HEAD answer has a length but no body
-  http::read(stream, buffer, parser);
-  const http::response<http::string_body>& response = parser.get();
-  return {static_cast<int>(response.result_int()), std::string(response[http::field::content_type]),
-          response.body()};
-}
-
-// "name{labels} value" lines keyed by "name{labels}"; comments skipped.
-std::map<std::string, double> ParseExposition(const std::string& text) {
-  std::map<std::string, double> samples;
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    const size_t space = line.rfind(' ');
-    samples[line.substr(0, space)] = std::stod(line.substr(space + 1));
-  }
-  return samples;
-}
 
 class E2eMetricsTest : public ::testing::Test {
  protected:

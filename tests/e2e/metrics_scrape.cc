@@ -1,0 +1,47 @@
+#include "metrics_scrape.h"
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <sstream>
+
+namespace scallop::testing {
+
+namespace http = boost::beast::http;
+using tcp = boost::asio::ip::tcp;
+
+HttpAnswer Fetch(const std::string& host_port, http::verb verb, const std::string& target) {
+  const size_t colon = host_port.rfind(':');
+  boost::asio::io_context context;
+  tcp::resolver resolver(context);
+  boost::beast::tcp_stream stream(context);
+  stream.connect(resolver.resolve(host_port.substr(0, colon), host_port.substr(colon + 1)));
+  http::request<http::empty_body> request(verb, target, 11);
+  request.set(http::field::host, host_port);
+  http::write(stream, request);
+  boost::beast::flat_buffer buffer;
+  http::response_parser<http::string_body> parser;
+  parser.skip(verb == http::verb::head);  // a HEAD answer has a length but no body
+  http::read(stream, buffer, parser);
+  const http::response<http::string_body>& response = parser.get();
+  return {static_cast<int>(response.result_int()), std::string(response[http::field::content_type]),
+          response.body()};
+}
+
+std::map<std::string, double> ParseExposition(const std::string& text) {
+  std::map<std::string, double> samples;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    const size_t space = line.rfind(' ');
+    samples[line.substr(0, space)] = std::stod(line.substr(space + 1));
+  }
+  return samples;
+}
+
+std::map<std::string, double> ScrapeMetrics(const std::string& host_port) {
+  const HttpAnswer answer = Fetch(host_port, http::verb::get, "/metrics");
+  return answer.status == 200 ? ParseExposition(answer.body) : std::map<std::string, double>{};
+}
+
+}  // namespace scallop::testing

@@ -1,0 +1,27 @@
+// A minimal HTTP client for tests of scallopd's /metrics endpoint, and a
+// parser of Prometheus text into samples keyed by "name{labels}".
+#pragma once
+
+#include <boost/beast/http/verb.hpp>
+#include <map>
+#include <string>
+
+namespace scallop::testing {
+
+struct HttpAnswer {
+  int status = 0;
+  std::string content_type;
+  std::string body;
+};
+
+// One request to HOST:PORT; throws on a transport error (a test failure).
+HttpAnswer Fetch(const std::string& host_port, boost::beast::http::verb verb,
+                 const std::string& target);
+
+// "name{labels} value" lines keyed by "name{labels}"; comments skipped.
+std::map<std::string, double> ParseExposition(const std::string& text);
+
+// GET /metrics of HOST:PORT, parsed; empty when the answer is not 200.
+std::map<std::string, double> ScrapeMetrics(const std::string& host_port);
+
+}  // namespace scallop::testing
