@@ -3,16 +3,22 @@
 # load"). Builds nothing: give it a build folder holding scallopd,
 # load_generator and null_server. It starts scallopd (with a cache budget)
 # and the null server on free loopback ports, runs the load generator warm
-# against both and cold against scallopd with each stream count, samples
-# scallopd's resident memory throughout, and prints a table with the ratio
-# warm / null. Both servers run side by side on this machine, in one run.
+# against both and cold against scallopd with each stream count, samples the
+# servers' resident memory throughout, and prints a table with the ratio
+# warm / null. All servers run side by side on this machine, in one run.
+#
+# With MALLOC_TUNED=1 (the default) a second scallopd runs with glibc's
+# malloc trim and mmap thresholds fixed (GLIBC_TUNABLES, no code change), to
+# show what the page faults of the shipped server cost; see the performance
+# notes. MALLOC_TUNED=0 leaves it out.
 #
 #   bench/run-load-benchmark.sh build-load
-#   CACHE_MB=64 DURATION=10 STREAMS="1 4" bench/run-load-benchmark.sh build-load
+#   CACHE_MB=64 DURATION=10 STREAMS="1 4" REPEATS=3 bench/run-load-benchmark.sh build-load
 set -euo pipefail
 
 if [[ $# -ne 1 ]]; then
-  echo "usage: $0 BUILD_DIR   (env: CACHE_MB DURATION REQUESTS STREAMS THREADS TILE WARM_SIDE)" >&2
+  echo "usage: $0 BUILD_DIR  (env: CACHE_MB DURATION REQUESTS STREAMS THREADS TILE WARM_SIDE" \
+    "REPEATS MALLOC_TUNED)" >&2
   exit 2
 fi
 build=$1
@@ -23,6 +29,11 @@ streams_list=${STREAMS:-"1 4"}
 threads=${THREADS:-2}          # scallopd --threads
 tile=${TILE:-64}               # tile side in d
 warm_side=${WARM_SIDE:-256}    # the warm square's side in d
+repeats=${REPEATS:-1}          # null / warm rounds per stream count
+malloc_tuned=${MALLOC_TUNED:-1}
+# Keeps freed response buffers in the heap instead of returning them to the
+# kernel after each request (which costs page faults on the next one).
+tunables=glibc.malloc.trim_threshold=4194304:glibc.malloc.mmap_threshold=1048576
 
 scallopd=$build/server/scallopd
 generator=$build/bench/load_generator
@@ -36,30 +47,53 @@ pids=()
 cleanup() {
   for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
   wait 2>/dev/null || true
+  rm -rf "$work"
 }
 trap cleanup EXIT
 
-# start_server NAME PREFIX COMMAND...: runs it with stdout to $work/NAME.out,
-# then waits up to 60 s for the line "PREFIX HOST:PORT" and prints HOST:PORT.
+declare -A address pid metrics idle_rss
+
+rss_kib() { awk '/^VmRSS:/ {print $2}' "/proc/$1/status"; }
+mib() { awk -v kib="$1" 'BEGIN { printf "%.1f", kib / 1024 }'; }
+
+# wait_for_line FILE PREFIX: after up to 60 s, the HOST:PORT of the line
+# "PREFIX HOST:PORT" in FILE, or nothing.
+wait_for_line() {
+  for _ in $(seq 600); do
+    local found
+    found=$(sed -n "s/^$2 //p" "$1" | head -1)
+    if [[ -n $found ]]; then echo "$found"; return 0; fi
+    sleep 0.1
+  done
+}
+
+# start_server NAME PREFIX COMMAND...: runs it with stdout to $work/NAME.out
+# and records its pid, address and (for scallopd) metrics address.
 start_server() {
   local name=$1 prefix=$2
   shift 2
   "$@" >"$work/$name.out" 2>"$work/$name.err" &
+  pid[$name]=$!
   pids+=($!)
-  echo $! >"$work/$name.pid"
-  for _ in $(seq 600); do
-    local address
-    address=$(sed -n "s/^$prefix //p" "$work/$name.out" | head -1)
-    if [[ -n $address ]]; then echo "$address"; return 0; fi
-    sleep 0.1
-  done
-  echo "$name did not start; its log:" >&2
-  cat "$work/$name.err" >&2
-  return 1
+  address[$name]=$(wait_for_line "$work/$name.out" "$prefix")
+  if [[ -z ${address[$name]} ]]; then
+    echo "$name did not start; its log:" >&2
+    cat "$work/$name.err" >&2
+    exit 1
+  fi
+  metrics[$name]=
+  if [[ $* == *--metrics-listen* ]]; then
+    metrics[$name]=$(wait_for_line "$work/$name.out" "scallopd metrics on")
+  fi
+  idle_rss[$name]=$(rss_kib "${pid[$name]}")
 }
 
-rss_kib() { awk '/^VmRSS:/ {print $2}' "/proc/$1/status"; }
-mib() { awk -v kib="$1" 'BEGIN { printf "%.1f", kib / 1024 }'; }
+# cache_counter NAME COUNTER: that server's counter (scallop_cache_hits_total,
+# ...), or 0 when it serves no metrics.
+cache_counter() {
+  [[ -n ${metrics[$1]} ]] || { echo 0; return; }
+  curl -s --max-time 2 "http://${metrics[$1]}/metrics" | awk -v name="$2" '$1 == name {print $2}'
+}
 
 # sample_rss PID FILE: VmRSS in KiB every 0.1 s until killed.
 sample_rss() {
@@ -70,67 +104,88 @@ sample_rss() {
 }
 
 echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), load at start:$(uptime | sed 's/.*load average://')"
-scallopd_address=$(start_server scallopd "scallopd listening on" \
-  "$scallopd" --listen 127.0.0.1:0 --threads "$threads" --cache-megabytes "$cache_mb")
-null_address=$(start_server null_server "null_server listening on" \
-  "$null_server" --listen 127.0.0.1:0 --tile "$tile")
-scallopd_pid=$(cat "$work/scallopd.pid")
-idle_rss=$(rss_kib "$scallopd_pid")
-echo "# scallopd $scallopd_address (--threads $threads --cache-megabytes $cache_mb), null server $null_address"
+# When scallopd serves metrics, its cache counters show that cold requests
+# generate every region they touch and warm ones none.
+scallopd_flags=(--listen 127.0.0.1:0 --threads "$threads" --cache-megabytes "$cache_mb")
+if "$scallopd" --help | grep -q -- --metrics-listen; then
+  scallopd_flags+=(--metrics-listen 127.0.0.1:0)
+fi
+start_server scallopd "scallopd listening on" "$scallopd" "${scallopd_flags[@]}"
+servers=(scallopd)
+if [[ $malloc_tuned == 1 ]]; then
+  start_server tuned "scallopd listening on" env GLIBC_TUNABLES=$tunables "$scallopd" \
+    "${scallopd_flags[@]}"
+  servers+=(tuned)
+fi
+start_server null "null_server listening on" "$null_server" --listen 127.0.0.1:0 --tile "$tile"
+echo "# scallopd ${address[scallopd]} (--threads $threads --cache-megabytes $cache_mb)," \
+  "tuned ${address[tuned]:-off} (GLIBC_TUNABLES=$tunables), null server ${address[null]}"
 echo "# each run: at most $duration s and $requests requests; tile $tile d; warm square $warm_side d"
 
 rows=$work/rows.tsv
 : >"$rows"
-# run SERVER_NAME ADDRESS MODE STREAMS: one generator run, a row in $rows
-# with scallopd's peak resident memory during it (MiB).
+# run SERVER MODE STREAMS: one generator run; a row in $rows with the
+# server's peak resident memory during it (MiB) and its cache's hits and
+# misses (regions generated) during it.
 run() {
-  local name=$1 address=$2 mode=$3 streams=$4
+  local name=$1 mode=$2 streams=$3
   local samples=$work/rss-$name-$mode-$streams
   : >"$samples"
-  sample_rss "$scallopd_pid" "$samples" &
+  sample_rss "${pid[$name]}" "$samples" &
   local sampler=$!
+  local hits_before misses_before
+  hits_before=$(cache_counter "$name" scallop_cache_hits_total)
+  misses_before=$(cache_counter "$name" scallop_cache_misses_total)
   local row
-  row=$("$generator" --target "$address" --mode "$mode" --streams "$streams" \
+  row=$("$generator" --target "${address[$name]}" --mode "$mode" --streams "$streams" \
     --duration "$duration" --requests "$requests" --tile "$tile" --warm-side "$warm_side" \
     --output tsv) || echo "# $name $mode $streams: errors (see the row)" >&2
   kill "$sampler"
   wait "$sampler" 2>/dev/null || true
-  local peak
-  peak=$(sort -n "$samples" | tail -1)
-  printf '%s\t%s\t%s\n' "$name" "$row" "$(mib "${peak:-0}")" >>"$rows"
+  local hits misses
+  hits=$(($(cache_counter "$name" scallop_cache_hits_total) - hits_before))
+  misses=$(($(cache_counter "$name" scallop_cache_misses_total) - misses_before))
+  printf '%s\t%s\t%s\t%s\t%s\n' "$name" "$row" "$(mib "$(sort -n "$samples" | tail -1)")" \
+    "$hits" "$misses" >>"$rows"
 }
 
 # Null and warm side by side for each stream count, so the ratio compares
 # runs seconds apart under the same background load.
-for streams in $streams_list; do
-  run null "$null_address" warm "$streams"
-  run scallopd "$scallopd_address" warm "$streams"
+for _ in $(seq "$repeats"); do
+  for streams in $streams_list; do
+    run null warm "$streams"
+    for server in "${servers[@]}"; do run "$server" warm "$streams"; done
+  done
 done
 for streams in $streams_list; do
-  run scallopd "$scallopd_address" cold "$streams"
+  for server in "${servers[@]}"; do run "$server" cold "$streams"; done
 done
 
 echo
-printf '%-9s %-5s %7s %9s %10s %11s %7s %8s %8s %8s %8s %6s %9s\n' server mode streams \
-  requests requests/s points/s MB/s p50_ms p90_ms p99_ms max_ms errors rss_MiB
-# Row columns: server, then load_generator --tsv-header, then the RSS peak.
-awk -F'\t' '{printf "%-9s %-5s %7d %9d %10.0f %11.3g %7.1f %8.3f %8.3f %8.3f %8.3f %6d %9.1f\n",
-  $1, $2, $3, $4, $7, $8, $9 / 1e6, $10, $11, $12, $13, $5, $14}' "$rows"
+printf '%-9s %-5s %7s %9s %10s %11s %7s %8s %8s %8s %8s %6s %8s %8s %8s\n' server mode \
+  streams requests requests/s points/s MB/s p50_ms p90_ms p99_ms max_ms errors rss_MiB \
+  hits/req gen/req
+# Row columns: server, load_generator --tsv-header, RSS peak, hits, misses.
+awk -F'\t' '{
+  per = $4 + $5 > 0 ? 1 / ($4 + $5) : 0
+  printf "%-9s %-5s %7d %9d %10.0f %11.3g %7.1f %8.3f %8.3f %8.3f %8.3f %6d %8.1f %8.1f %8.1f\n",
+    $1, $2, $3, $4, $7, $8, $9 / 1e6, $10, $11, $12, $13, $5, $14, $15 * per, $16 * per}' "$rows"
 
 echo
 awk -F'\t' '
-  $1 == "null" { null[$3] = $7 }
-  $1 == "scallopd" && $2 == "warm" { warm[$3] = $7 }
-  $1 == "scallopd" && $2 == "cold" && $3 == 1 { cold_p99 = $12 }
+  $2 == "warm" { rate[$1, $3] += $7; seen[$3] = 1 }
+  $2 == "cold" && $3 == 1 { cold_p99[$1] = $12 }
   END {
-    for (s in warm) if (s in null)
-      printf "warm / null requests/s, %d streams: %.2f (target >= 0.7)\n", s, warm[s] / null[s]
-    if (cold_p99 != "") printf "cold p99, 1 stream: %.2f ms (target < 10 ms)\n", cold_p99
-  }' "$rows"
-peak_rss=$(cut -f14 "$rows" | sort -n | tail -1)
-hwm=$(awk '/^VmHWM:/ {print $2}' "/proc/$scallopd_pid/status")
-echo "scallopd resident memory: $(mib "$idle_rss") MiB idle, $peak_rss MiB peak sampled," \
-  "$(mib "$hwm") MiB VmHWM; growth $(mib $((hwm - idle_rss))) MiB against a cache budget of" \
-  "$cache_mb MiB"
+    for (s in seen) {
+      printf "warm / null requests/s, %d streams: scallopd %.2f", s, rate["scallopd", s] / rate["null", s]
+      if (("tuned", s) in rate) printf ", tuned %.2f", rate["tuned", s] / rate["null", s]
+      printf " (target >= 0.7; sums over rounds)\n"
+    }
+    for (server in cold_p99) printf "cold p99, 1 stream, %s: %.2f ms (target < 10 ms)\n", server, cold_p99[server]
+  }' "$rows" | sort
+for server in "${servers[@]}"; do
+  hwm=$(awk '/^VmHWM:/ {print $2}' "/proc/${pid[$server]}/status")
+  echo "$server resident memory: $(mib "${idle_rss[$server]}") MiB idle, $(mib "$hwm") MiB peak" \
+    "(VmHWM); growth $(mib $((hwm - idle_rss[$server]))) MiB against a cache budget of $cache_mb MiB"
+done
 echo "# load at end:$(uptime | sed 's/.*load average://')"
-rm -rf "$work"
