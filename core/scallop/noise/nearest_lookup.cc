@@ -4,7 +4,7 @@
 #include "scallop/noise/nearest_lookup.h"
 
 #include <algorithm>
-#include <array>
+#include <bit>
 #include <cmath>
 #include <string>
 
@@ -32,15 +32,20 @@ Rect ClipToRange(Rect rect, double limit) {
           std::min(rect.y1, limit)};
 }
 
-// Direct-mapped table of the grids one call has used. 64 slots hold every
-// region of a 128 d square, so batches over such an area take the shared
-// cache's mutex about once per region.
-constexpr size_t kCallSlots = 64;
+// Direct-mapped table of the grids one call has used, so that a batch takes
+// the shared cache's mutex about once per region it visits rather than once
+// per position. Up to 1024 slots (every region of a 512 d square), fewer for
+// small batches, whose table would cost more to clear than it saves.
+constexpr size_t kMaxCallSlots = 1024;
 
-size_t CallSlotOf(RegionKey key) {
+size_t CallSlotCount(size_t positions) {
+  return std::min(kMaxCallSlots, std::bit_ceil(std::max<size_t>(positions, 1)));
+}
+
+size_t CallSlotOf(RegionKey key, size_t slot_count) {
   return static_cast<size_t>(
       Mix64(static_cast<uint64_t>(key.i) * 0x9e3779b97f4a7c15ULL ^ static_cast<uint64_t>(key.j)) &
-      (kCallSlots - 1));
+      (slot_count - 1));
 }
 
 NearestPoint FromTwoNearest(const TwoNearest& best) {
@@ -65,6 +70,8 @@ NearestLookup::NearestLookup(PlaneEngine& engine, NearestLookupOptions options)
 
 Status NearestLookup::ValidatePosition(const World& world, Vec2 position, size_t index) {
   const double limit = RegionLayout(world.min_distance).precision_limit();
+  // The message is built only on failure: this runs once per position.
+  if (std::abs(position.x) <= limit && std::abs(position.y) <= limit) return Status::Ok();
   const std::pair<char, double> coordinates[] = {{'x', position.x}, {'y', position.y}};
   for (const auto& [axis, value] : coordinates) {
     const std::string field = "positions[" + std::to_string(index) + "]." + axis;
@@ -87,38 +94,90 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
     if (Status status = ValidatePosition(world, positions[k], k); !status.ok()) return status;
   }
   const World canonical = CanonicalWorld(world);
-  const RegionLayout layout(canonical.min_distance);
-  struct CallSlot {
-    RegionKey key;
-    GridHandle grid;
-  };
-  std::array<CallSlot, kCallSlots> slots;
   int64_t fallbacks = 0;
-  for (size_t k = 0; k < positions.size(); ++k) {
-    const Vec2 p = positions[k];
+  auto answer = [&](size_t k, Vec2 p, const NearestSearchGrid* grid) -> Status {
     TwoNearest best;
-    bool certified = false;
-    if (options_.method == NearestMethod::kGrid) {
-      const RegionKey key = ClampedRegionOf(layout, p);
-      CallSlot& slot = slots[CallSlotOf(key)];
-      if (!slot.grid || slot.key != key) {
-        StatusOr<GridHandle> grid = Grid(canonical, key);
-        if (!grid.ok()) return grid.status();
-        slot = {key, std::move(*grid)};
+    if (grid != nullptr && grid->FindTwoNearest(p, best)) {
+      results[k] = FromTwoNearest(best);
+      return Status::Ok();
+    }
+    if (grid != nullptr) ++fallbacks;
+    StatusOr<TwoNearest> exact = BruteForce(canonical, p);
+    if (!exact.ok()) return exact.status();
+    results[k] = FromTwoNearest(*exact);
+    return Status::Ok();
+  };
+  if (options_.method == NearestMethod::kBruteForce) {
+    for (size_t k = 0; k < positions.size(); ++k) {
+      if (Status status = answer(k, positions[k], nullptr); !status.ok()) return status;
+    }
+  } else {
+    std::vector<GridHandle> grids;
+    std::vector<uint32_t> grid_of;
+    if (Status status = AssignGrids(canonical, positions, grids, grid_of); !status.ok()) {
+      return status;
+    }
+    // Positions grouped by grid (a counting sort, stable), so each grid is
+    // read from memory once per batch rather than once per position.
+    std::vector<uint32_t> starts(grids.size() + 1, 0);
+    for (uint32_t g : grid_of) ++starts[g + 1];
+    for (size_t g = 0; g < grids.size(); ++g) starts[g + 1] += starts[g];
+    // The positions are copied in that order too: reading them through the
+    // permutation would miss the cache on every one.
+    struct Sorted {
+      Vec2 position;
+      uint32_t index;
+      uint32_t grid;
+    };
+    std::vector<Sorted> sorted(positions.size());
+    for (size_t k = 0; k < positions.size(); ++k) {
+      sorted[starts[grid_of[k]]++] = {positions[k], static_cast<uint32_t>(k), grid_of[k]};
+    }
+    for (const Sorted& entry : sorted) {
+      if (Status status = answer(entry.index, entry.position, grids[entry.grid].get());
+          !status.ok()) {
+        return status;
       }
-      certified = slot.grid->FindTwoNearest(p, best);
-      if (!certified) ++fallbacks;
     }
-    if (!certified) {
-      StatusOr<TwoNearest> exact = BruteForce(canonical, p);
-      if (!exact.ok()) return exact.status();
-      best = *exact;
-    }
-    results[k] = FromTwoNearest(best);
   }
   std::lock_guard lock(mutex_);
   stats_.lookups += static_cast<int64_t>(positions.size());
   stats_.fallbacks += fallbacks;
+  return Status::Ok();
+}
+
+Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> positions,
+                                  std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of) {
+  const RegionLayout layout(world.min_distance);
+  struct CallSlot {
+    RegionKey key;
+    uint32_t grid = 0;
+    bool used = false;
+  };
+  std::vector<CallSlot> slots(CallSlotCount(positions.size()));
+  grid_of.resize(positions.size());
+  // The region of the previous position: coherent batches (images, paths)
+  // skip the region arithmetic while they stay in it.
+  Rect current_region;
+  uint32_t current = 0;
+  for (size_t k = 0; k < positions.size(); ++k) {
+    const Vec2 p = positions[k];
+    if (grids.empty() || !current_region.Contains(p)) {
+      const RegionKey key = ClampedRegionOf(layout, p);
+      CallSlot& slot = slots[CallSlotOf(key, slots.size())];
+      if (!slot.used || slot.key != key) {
+        // A region met again after its slot was reused gets a second entry:
+        // harmless, the grid is shared.
+        StatusOr<GridHandle> grid = Grid(world, key);
+        if (!grid.ok()) return grid.status();
+        slot = {key, static_cast<uint32_t>(grids.size()), true};
+        grids.push_back(std::move(*grid));
+      }
+      current = slot.grid;
+      current_region = layout.RegionRect(key);
+    }
+    grid_of[k] = current;
+  }
   return Status::Ok();
 }
 

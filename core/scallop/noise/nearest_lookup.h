@@ -88,6 +88,9 @@ class NearestLookup {
     std::list<Key>::iterator lru;
   };
 
+  // The grid each position is answered by: grids[grid_of[k]] for position k.
+  Status AssignGrids(const World& world, std::span<const Vec2> positions,
+                     std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of);
   // The grid of `region`, from the cache or built (outside the mutex: two
   // threads may build the same grid at once, and both get identical grids).
   StatusOr<GridHandle> Grid(const World& world, RegionKey region);
