@@ -12,6 +12,7 @@
 #include "page_token.h"
 #include "query_limits.h"
 #include "request_log.h"
+#include "scallop/noise/nearest_lookup.h"
 #include "scallop/plane/plane_engine.h"
 #include "scallop/v1/scallop.grpc.pb.h"
 #include "server_config.h"
@@ -84,6 +85,8 @@ class ScallopService final : public v1::Scallop::CallbackService {
   const WorldRegistry& worlds_;
   const PageTokenCodec& page_tokens_;
   PlaneEngine& engine_;
+  // Nearest and NoiseGrid: search grids cached across requests, on engine_'s regions.
+  NearestLookup nearest_lookup_{engine_};
   boost::asio::thread_pool& request_pool_;
   RequestMetrics* metrics_;
   InFlightLimit in_flight_;

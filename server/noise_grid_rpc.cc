@@ -1,0 +1,71 @@
+// NoiseGrid: one channel of the cellular-noise basis on a regular grid of
+// samples, row-major, as scallop/noise/noise_grid.h evaluates it.
+#include <optional>
+
+#include "scallop/noise/noise_grid.h"
+#include "scallop_service.h"
+#include "status_mapping.h"
+#include "world_messages.h"
+
+namespace scallop::server {
+namespace {
+
+std::optional<NoiseChannel> ChannelFromMessage(v1::NoiseChannel channel) {
+  switch (channel) {
+    case v1::NOISE_CHANNEL_F1:
+      return NoiseChannel::kF1;
+    case v1::NOISE_CHANNEL_F2:
+      return NoiseChannel::kF2;
+    case v1::NOISE_CHANNEL_F2_MINUS_F1:
+      return NoiseChannel::kF2MinusF1;
+    case v1::NOISE_CHANNEL_ID:
+      return NoiseChannel::kId;
+    case v1::NOISE_CHANNEL_CELL_VALUE:
+      return NoiseChannel::kCellValue;
+    default:
+      return std::nullopt;
+  }
+}
+
+}  // namespace
+
+grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext* context,
+                                                    const v1::NoiseGridRequest* request,
+                                                    v1::NoiseGridResponse* response) {
+  return RunUnary(context, "NoiseGrid", [this, request, response](RequestLog& log) {
+    ResolvedWorld resolved;
+    if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
+    const World& world = resolved.world;
+    log.set_world(scallop::DescribeWorld(world));
+    const std::optional<NoiseChannel> channel = ChannelFromMessage(request->channel());
+    if (!channel) {
+      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                          "channel: required, one of NOISE_CHANNEL_F1, _F2, _F2_MINUS_F1, _ID, "
+                          "_CELL_VALUE");
+    }
+    const NoiseGridSpec spec{.origin = {request->origin_x(), request->origin_y()},
+                             .step = request->step(),
+                             .width = request->width(),
+                             .height = request->height(),
+                             .channel = *channel};
+    StatusOr<NoiseImage> image =
+        EvaluateNoiseGrid(nearest_lookup_, world, spec, config_.max_noise_grid_samples);
+    if (!image.ok()) {
+      // The core names the limit's value; say which setting it is.
+      Status status = image.status();
+      if (status.message().starts_with("width * height")) {
+        status = {status.code(), status.message() + " (max_noise_grid_samples)"};
+      }
+      return ToGrpcStatus(status);
+    }
+    *response->mutable_world() = WorldToMessage(world);
+    response->set_width(image->width);
+    response->set_height(image->height);
+    response->mutable_values()->Add(image->values.begin(), image->values.end());
+    response->mutable_ids()->Add(image->ids.begin(), image->ids.end());
+    log.add_points(int64_t{image->width} * image->height);
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace scallop::server
