@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""A Python client of scallopd: the points of a world's rectangle as CSV.
+
+Prints `id,x,y` rows exactly as `scallop plane` does for the same world and
+rectangle (ids in decimal, coordinates with 17 significant digits), reading
+every page of GetPoints or, with --stream, the chunks of StreamPoints.
+Stubs come from generate_stubs.sh; put their folder on PYTHONPATH.
+
+  ./generate_stubs.sh /tmp/scallop-py
+  PYTHONPATH=/tmp/scallop-py ./scallop_points.py --server 127.0.0.1:50051 \
+      --seed 7 --rect=0,0,40,40   # "=": argparse reads "-5,..." as a flag
+"""
+import argparse
+import sys
+
+import grpc
+
+from scallop.v1 import scallop_pb2, scallop_pb2_grpc
+
+ALGORITHMS = {
+    "a1": scallop_pb2.ALGORITHM_A1,
+    "a2": scallop_pb2.ALGORITHM_A2,
+    "a3": scallop_pb2.ALGORITHM_A3,
+}
+
+
+def parse_arguments(argv):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--server", default="127.0.0.1:50051", help="HOST:PORT of scallopd")
+    parser.add_argument("--world", help="name of a world configured on the server")
+    parser.add_argument("--seed", type=int, help="seed of an inline world (0..2^64-1)")
+    parser.add_argument("--min-distance", type=float, default=1.0)
+    parser.add_argument("--algorithm", choices=sorted(ALGORITHMS), default="a3")
+    parser.add_argument("--density", type=float, default=0.0, help="r'/2r; 0: default")
+    parser.add_argument("--rect", required=True, help="X0,Y0,X1,Y1 (half-open)")
+    parser.add_argument("--stream", action="store_true", help="use StreamPoints")
+    parser.add_argument("--page-size", type=int, default=0)
+    parser.add_argument("--timeout", type=float, default=60.0, help="seconds per call")
+    return parser.parse_args(argv)
+
+
+def world_choice(arguments):
+    """The oneof world_choice of a request: a name, an inline world or neither."""
+    if arguments.world is not None:
+        return {"world_name": arguments.world}
+    if arguments.seed is not None:
+        return {"world": scallop_pb2.World(
+            seed=arguments.seed, min_distance=arguments.min_distance,
+            algorithm=ALGORITHMS[arguments.algorithm], density=arguments.density)}
+    return {}
+
+
+def parse_rect(text):
+    values = [float(v) for v in text.split(",")]
+    if len(values) != 4:
+        raise ValueError("--rect: expected X0,Y0,X1,Y1")
+    return scallop_pb2.Rect(x0=values[0], y0=values[1], x1=values[2], y1=values[3])
+
+
+def points_of_pages(stub, arguments, rect):
+    """Every page of GetPoints, following next_page_token."""
+    token = ""
+    while True:
+        response = stub.GetPoints(scallop_pb2.GetPointsRequest(
+            rect=rect, page_size=arguments.page_size, page_token=token,
+            **world_choice(arguments)), timeout=arguments.timeout)
+        yield response.points
+        token = response.next_page_token
+        if not token:
+            return
+
+
+def points_of_stream(stub, arguments, rect):
+    """The chunks of StreamPoints, one region each."""
+    request = scallop_pb2.StreamPointsRequest(rect=rect, **world_choice(arguments))
+    for chunk in stub.StreamPoints(request, timeout=arguments.timeout):
+        yield chunk.points
+
+
+def main(argv):
+    arguments = parse_arguments(argv)
+    try:
+        rect = parse_rect(arguments.rect)
+    except ValueError as error:
+        print(f"scallop_points: {error}", file=sys.stderr)
+        return 2
+    with grpc.insecure_channel(arguments.server) as channel:
+        stub = scallop_pb2_grpc.ScallopStub(channel)
+        read = points_of_stream if arguments.stream else points_of_pages
+        out = sys.stdout
+        out.write("id,x,y\n")
+        try:
+            for points in read(stub, arguments, rect):
+                for point_id, x, y in zip(points.ids, points.xs, points.ys):
+                    out.write(f"{point_id},{x:.17g},{y:.17g}\n")
+        except grpc.RpcError as error:
+            print(f"scallop_points: {error.code().name}: {error.details()}", file=sys.stderr)
+            return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The Python example client (examples/python) against a real scallopd: stubs
+# generated from our proto with Debian's tools, then its CSV compared byte for
+# byte with `scallop plane` for paged, streamed, inline and named worlds, and
+# a bad rectangle reported with the server's message and exit 1.
+# Usage: python_client_test.sh SCALLOP_CLI SCALLOPD SOURCE_DIR
+set -euo pipefail
+cli=$1 scallopd=$2 source_dir=$3
+python=/usr/bin/python3  # Debian's, where python3-grpcio is installed
+work=$(mktemp -d)
+server_pid=
+cleanup() {
+  [ -n "$server_pid" ] && kill "$server_pid" 2>/dev/null && wait "$server_pid" 2>/dev/null
+  rm -rf "$work"
+}
+trap cleanup EXIT
+
+bash "$source_dir/examples/python/generate_stubs.sh" "$work/stubs"
+"$scallopd" --listen 127.0.0.1:0 --world hills:11:0.5:a1 >"$work/address" 2>"$work/log" &
+server_pid=$!
+for _ in $(seq 100); do grep -q listening "$work/address" 2>/dev/null && break; sleep 0.1; done
+address=$(sed -n 's/^scallopd listening on //p' "$work/address")
+[ -n "$address" ] || { echo "scallopd did not start"; cat "$work/log"; exit 1; }
+
+client() { PYTHONPATH="$work/stubs" "$python" "$source_dir/examples/python/scallop_points.py" --server "$address" "$@"; }
+compare() {  # compare NAME "CLIENT ARGS" "PLANE ARGS"
+  read -ra client_args <<<"$2"
+  read -ra plane_args <<<"$3"
+  client "${client_args[@]}" >"$work/python.csv"
+  "$cli" plane "${plane_args[@]}" >"$work/plane.csv"
+  if ! cmp -s "$work/python.csv" "$work/plane.csv"; then
+    echo "python client, $1: differs from scallop plane"; diff "$work/python.csv" "$work/plane.csv" | head; exit 1
+  fi
+  [ "$(wc -l <"$work/plane.csv")" -gt 10 ] || { echo "$1: too few points to judge"; exit 1; }
+}
+compare "paged inline world" "--seed 7 --rect=-20,-20,30,30 --page-size 100" "--seed 7 --rect -20,-20,30,30"
+compare "streamed named world" "--world hills --stream --rect=-40,5,35,61" \
+  "--seed 11 --min-distance 0.5 --algorithm a1 --rect -40,5,35,61"
+compare "A2 with density" "--seed 3 --algorithm a2 --density 1.5 --rect=100,100,140,150" \
+  "--seed 3 --algorithm a2 --density 1.5 --rect 100,100,140,150"
+
+status=0
+client --rect=10,0,0,10 >/dev/null 2>"$work/err" || status=$?
+if [ "$status" != 1 ] || ! grep -q "INVALID_ARGUMENT: rect" "$work/err"; then
+  echo "python client, inverted rect: exit $status, stderr: $(cat "$work/err")"; exit 1
+fi
+echo "python client: 3 comparisons with scallop plane and 1 error case passed"
