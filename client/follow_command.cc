@@ -1,16 +1,110 @@
-// `scallop follow`: PLACEHOLDER until issue 8 lands (replaced in this session).
+// `scallop follow`: replays a path of viewports (one X0,Y0,X1,Y1 per line)
+// through scallopd's Follow. Every point received goes to stdout as the
+// `id,x,y` CSV of `scallop plane`; points, bytes, messages, evictions and the
+// time from sending a step to its last message go to stderr, one line a step.
+#include <chrono>
+#include <fstream>
+#include <iomanip>
 #include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "commands.h"
+#include "follow_client.h"
+#include "rect_option.h"
+#include "remote_options.h"
 
 namespace scallop::cli {
+namespace {
+
+struct FollowArguments {
+  WorldArguments world;
+  RemoteArguments remote;
+  std::string path;
+  double keep_margin = 0;
+};
+
+// The path's rectangles; blank lines and lines starting with '#' are skipped.
+StatusOr<std::vector<Rect>> ReadPath(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) return InvalidArgument("--path: cannot read '" + file + "'");
+  std::vector<Rect> path;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty() || line[0] == '#') continue;
+    StatusOr<Rect> rect = ParseRect(line, "--path line " + std::to_string(number));
+    if (!rect.ok()) return rect.status();
+    path.push_back(*rect);
+  }
+  if (path.empty()) return InvalidArgument("--path: '" + file + "' has no rectangle");
+  return path;
+}
+
+int RunFollow(const FollowArguments& arguments) {
+  v1::FollowRequest first;
+  if (Status status = SetRequestWorld(arguments.remote, arguments.world, first); !status.ok()) {
+    std::cerr << "scallop follow: " << status.message() << '\n';
+    return 2;
+  }
+  StatusOr<std::vector<Rect>> path = ReadPath(arguments.path);
+  if (!path.ok()) {
+    std::cerr << "scallop follow: " << path.status().message() << '\n';
+    return 2;
+  }
+  const client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+  client::FollowSession session(client, CallOptionsFor(arguments.remote));
+  std::cout << std::setprecision(17) << "id,x,y\n";
+  int64_t total_points = 0, total_bytes = 0;
+  for (size_t step = 0; step < path->size(); ++step) {
+    v1::FollowRequest request = step == 0 ? first : v1::FollowRequest();
+    *request.mutable_viewport() = RectToMessage((*path)[step]);
+    request.set_keep_margin(arguments.keep_margin);
+    int64_t points = 0, bytes = 0, messages = 0, evicted = 0;
+    const auto start = std::chrono::steady_clock::now();
+    const grpc::Status status = session.Update(request, [&](const v1::FollowResponse& response) {
+      ++messages;
+      bytes += static_cast<int64_t>(response.ByteSizeLong());
+      evicted += response.evicted_size();
+      const v1::Points& p = response.chunk().points();
+      for (int k = 0; k < p.xs_size() && k < p.ys_size() && k < p.ids_size(); ++k) {
+        std::cout << p.ids(k) << ',' << p.xs(k) << ',' << p.ys(k) << '\n';
+        ++points;
+      }
+    });
+    const double milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (!status.ok()) return ReportCallFailure("follow", status);
+    total_points += points;
+    total_bytes += bytes;
+    std::cerr << "step " << step + 1 << ": " << points << " points, " << bytes << " bytes, "
+              << messages << " messages, " << evicted << " regions evicted, " << std::fixed
+              << std::setprecision(3) << milliseconds << " ms\n"
+              << std::defaultfloat;
+  }
+  if (grpc::Status status = session.Finish(); !status.ok()) {
+    return ReportCallFailure("follow", status);
+  }
+  std::cerr << "total: " << path->size() << " steps, " << total_points << " points, " << total_bytes
+            << " bytes\n";
+  return 0;
+}
+
+}  // namespace
 
 CommandRunner RegisterFollow(CLI::App& app) {
-  app.add_subcommand("follow", "(not yet available)");
-  return [] {
-    std::cerr << "scallop follow: not yet available\n";
-    return 2;
-  };
+  auto arguments = std::make_shared<FollowArguments>();
+  CLI::App* command = app.add_subcommand(
+      "follow", "Replay a path of viewports through scallopd's Follow (points newly in view)");
+  AddWorldOptions(*command, arguments->world, /*with_rect=*/false);
+  AddRemoteOptions(*command, arguments->remote);
+  command->add_option("--path", arguments->path, "File of viewports, one X0,Y0,X1,Y1 a line")
+      ->required();
+  command
+      ->add_option("--keep-margin", arguments->keep_margin,
+                   "Keep regions within this distance of the viewport (world units)")
+      ->capture_default_str();
+  return [arguments] { return RunFollow(*arguments); };
 }
 
 }  // namespace scallop::cli
