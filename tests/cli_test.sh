@@ -142,5 +142,34 @@ check "SVG draws every point" test "$circles" = "$(wc -l <"$work/csv")"
 expect_exit 0 plane --rect -20,-20,20,20 --format svg
 check "SVG without --seams has no lines" test "$(grep -c '<line ' "$work/out" || true)" = 0
 
+# --- Analyze: spectra of files, samplers and worlds ------------------------
+
+expect_exit 0 analyze --domain 0,0,20,20 --torus --algorithm a3,dart --sets 2 --json
+check "analyze --json: two series" test "$(grep -o '"name":' "$work/out" | wc -l)" = 2
+check "analyze --json: A3 rho near 0.86" grep -qE '"rho":\{"mean":0\.8[4-8]' "$work/out"
+run plane --rect -10,-10,10,10
+cp "$work/out" "$work/plane.csv"
+expect_exit 0 analyze --input "$work/plane.csv" --rect -8,-8,8,8 --png "$work/p.png" \
+  --plot "$work/p.svg"
+check "analyze --png writes a PNG" test "$(head -c 4 "$work/p.png" | tail -c 3)" = PNG
+check "analyze --plot writes an SVG" grep -q '^<svg ' "$work/p.svg"
+check "analyze of a file drops points outside --rect" grep -q 'outside the window' "$work/out"
+run plane --rect -10,-10,10,10 --format json
+cp "$work/out" "$work/plane.json"
+expect_exit 0 analyze --input "$work/plane.json" --input "$work/plane.csv" --json
+check "analyze --input twice: two sets" grep -qF '"sets":2' "$work/out"
+expect_exit 0 analyze --rect 12,4,20,12 --rect 4,4,12,12 --label seam,interior --sets 3
+check "analyze of worlds: labelled series" grep -q '^interior (world)' "$work/out"
+expect_exit 2 analyze --rect 0,0,10,20
+expect_exit 2 analyze --domain 0,0,10,10 --algorithm nope
+expect_exit 2 analyze --input "$work/missing.csv"
+expect_exit 2 analyze --input "$work/plane.csv" --domain 0,0,10,10
+expect_exit 2 analyze --domain 0,0,10,10 --max-frequency 257
+expect_exit 2 analyze --domain 0,0,10,10 --sets 0
+expect_exit 2 analyze --domain 0,0,10,10 --plot "$work/p.png"
+expect_exit 2 analyze --rect 0,0,10,10 --label one,two
+expect_exit 2 analyze
+expect_exit 1 analyze --domain 0,0,10,10 --png "$work/no/such/dir/p.png"
+
 echo "$passed passed, $failed failed"
 [[ $failed == 0 ]]
