@@ -105,6 +105,20 @@ grpc::Status ScallopClient::GetServerInfo(v1::GetServerInfoResponse& response,
   return stub_->GetServerInfo(&context, v1::GetServerInfoRequest(), &response);
 }
 
+grpc::Status ScallopClient::Nearest(const v1::NearestRequest& request,
+                                    v1::NearestResponse& response, const CallOptions& options) {
+  grpc::ClientContext context;
+  Configure(context, options);
+  return stub_->Nearest(&context, request, &response);
+}
+
+grpc::Status ScallopClient::NoiseGrid(const v1::NoiseGridRequest& request,
+                                      v1::NoiseGridResponse& response, const CallOptions& options) {
+  grpc::ClientContext context;
+  Configure(context, options);
+  return stub_->NoiseGrid(&context, request, &response);
+}
+
 grpc::Status ScallopClient::CheckHealth(bool& serving, const CallOptions& options) {
   grpc::ClientContext context;
   Configure(context, options);

@@ -54,6 +54,14 @@ class ScallopClient {
                              v1::DescribeWorldResponse& response, const CallOptions& options = {});
   grpc::Status GetServerInfo(v1::GetServerInfoResponse& response, const CallOptions& options = {});
 
+  // The noise basis at request.positions (at most the server's
+  // max_nearest_batch: split larger sets into several calls), in their order.
+  grpc::Status Nearest(const v1::NearestRequest& request, v1::NearestResponse& response,
+                       const CallOptions& options = {});
+  // One channel on a grid of at most max_noise_grid_samples samples.
+  grpc::Status NoiseGrid(const v1::NoiseGridRequest& request, v1::NoiseGridResponse& response,
+                         const CallOptions& options = {});
+
   // The standard health check of the whole server: true when SERVING.
   grpc::Status CheckHealth(bool& serving, const CallOptions& options = {});
 
