@@ -30,6 +30,9 @@ CommandRunner RegisterStream(CLI::App& app);
 // `scallop info`: scallopd's version, limits, worlds and health.
 CommandRunner RegisterInfo(CLI::App& app);
 
+// `scallop health`: exit 0 when scallopd is SERVING, for probes.
+CommandRunner RegisterHealth(CLI::App& app);
+
 // `scallop nearest`: nearest point id, F1 and F2 at positions, locally or
 // with --server by scallopd.
 CommandRunner RegisterNearest(CLI::App& app);

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
       {"points", scallop::cli::RegisterPoints(app)},
       {"stream", scallop::cli::RegisterStream(app)},
       {"info", scallop::cli::RegisterInfo(app)},
+      {"health", scallop::cli::RegisterHealth(app)},
       {"nearest", scallop::cli::RegisterNearest(app)},
       {"noise", scallop::cli::RegisterNoise(app)},
       {"analyze", scallop::cli::RegisterAnalyze(app)},

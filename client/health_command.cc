@@ -1,0 +1,49 @@
+// `scallop health`: the standard gRPC health check of a scallopd, as an exit
+// code for probes (Docker HEALTHCHECK, Kubernetes exec probes, scripts):
+// 0 when SERVING, 1 when NOT_SERVING or unreachable within the timeout.
+#include <iostream>
+#include <memory>
+
+#include "commands.h"
+#include "scallop_client.h"
+
+namespace scallop::cli {
+namespace {
+
+struct HealthArguments {
+  std::string server;
+  double timeout_seconds = 2;
+  bool quiet = false;
+};
+
+int RunHealth(const HealthArguments& arguments) {
+  client::ScallopClient client = client::ScallopClient::Connect(arguments.server);
+  bool serving = false;
+  const grpc::Status status =
+      client.CheckHealth(serving, {.timeout = std::chrono::milliseconds(
+                                       static_cast<int64_t>(arguments.timeout_seconds * 1000))});
+  if (!status.ok()) {
+    if (!arguments.quiet) {
+      std::cerr << "scallop health: " << client::DescribeStatus(status) << '\n';
+    }
+    return 1;
+  }
+  if (!arguments.quiet) std::cout << (serving ? "SERVING" : "NOT_SERVING") << '\n';
+  return serving ? 0 : 1;
+}
+
+}  // namespace
+
+CommandRunner RegisterHealth(CLI::App& app) {
+  auto arguments = std::make_shared<HealthArguments>();
+  CLI::App* command =
+      app.add_subcommand("health", "Exit 0 if scallopd is SERVING, 1 if not or unreachable");
+  command->add_option("--server", arguments->server, "HOST:PORT of scallopd")->required();
+  command->add_option("--timeout", arguments->timeout_seconds, "Seconds to wait for an answer")
+      ->check(CLI::Range(0.001, 3600.0))
+      ->default_str("2");
+  command->add_flag("--quiet", arguments->quiet, "Print nothing; the exit code says it");
+  return [arguments] { return RunHealth(*arguments); };
+}
+
+}  // namespace scallop::cli
