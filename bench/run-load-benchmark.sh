@@ -187,5 +187,11 @@ for server in "${servers[@]}"; do
   hwm=$(awk '/^VmHWM:/ {print $2}' "/proc/${pid[$server]}/status")
   echo "$server resident memory: $(mib "${idle_rss[$server]}") MiB idle, $(mib "$hwm") MiB peak" \
     "(VmHWM); growth $(mib $((hwm - idle_rss[$server]))) MiB against a cache budget of $cache_mb MiB"
+  if [[ -n ${metrics[$server]} ]]; then
+    cache_bytes=$(cache_counter "$server" scallop_cache_bytes)
+    echo "$server cache at the end: $(mib $((cache_bytes / 1024))) MiB by its own count," \
+      "$(cache_counter "$server" scallop_cache_regions) regions," \
+      "$(cache_counter "$server" scallop_cache_evictions_total) evicted so far"
+  fi
 done
 echo "# load at end:$(uptime | sed 's/.*load average://')"
