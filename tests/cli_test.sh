@@ -171,5 +171,60 @@ expect_exit 2 analyze --rect 0,0,10,10 --label one,two
 expect_exit 2 analyze
 expect_exit 1 analyze --domain 0,0,10,10 --png "$work/no/such/dir/p.png"
 
+# --- scallop nearest and scallop noise (issue 5) -----------------------------
+
+# Header, one row per position, stdin = --input; blank, comment and header lines skipped.
+printf 'x,y\n0.5,0.25\n\n# a comment\n16,3\n-1e6,2.5\n' >"$work/positions"
+expect_exit 0 nearest --seed 7 --input "$work/positions"
+cp "$work/out" "$work/nearest.csv"
+check "nearest: CSV header" test "$(head -n 1 "$work/nearest.csv")" = "x,y,id,f1,f2,nearest_x,nearest_y"
+check "nearest: one row per position" test "$(wc -l <"$work/nearest.csv")" = 4
+"$scallop" nearest --seed 7 <"$work/positions" >"$work/stdin.csv"
+check "nearest: stdin = --input" cmp -s "$work/nearest.csv" "$work/stdin.csv"
+
+# Against brute force in awk (doubles, the same dx*dx + dy*dy, %.17g): random
+# positions, one on a seam and one on a point, over the points of `scallop
+# plane` within 4 d. Ties between distinct points do not occur at random.
+rows "$work/points" --seed 7 --rect -8,-8,40,24
+point=$(head -n 1 "$work/points")
+{
+  echo "16,${point##*,}"
+  echo "${point#*,}"
+  awk 'BEGIN { srand(11); for (k = 0; k < 25; ++k) printf "%.17g,%.17g\n", rand() * 32 - 4, rand() * 16 - 4 }'
+} >"$work/random_positions"
+expect_exit 0 nearest --seed 7 --input "$work/random_positions"
+tail -n +2 "$work/out" | cut -d, -f1-4 >"$work/fast"
+awk -F, 'NR == FNR { id[NR] = $1; x[NR] = $2; y[NR] = $3; n = NR; next }
+  { best = -1; for (k = 1; k <= n; ++k) { dx = $1 - x[k]; dy = $2 - y[k]; s = dx * dx + dy * dy;
+      if (best < 0 || s < best) { best = s; who = id[k] } }
+    printf "%.17g,%.17g,%s,%.17g\n", $1, $2, who, sqrt(best) }' \
+  "$work/points" "$work/random_positions" >"$work/slow"
+check "nearest = awk brute force (id, F1)" cmp -s "$work/fast" "$work/slow"
+check "nearest: on a point, F1 = 0 and its id" \
+  test "$(sed -n 3p "$work/out" | cut -d, -f3,4)" = "${point%%,*},0"
+
+printf '1,2\nfoo\n' >"$work/bad_positions"
+expect_bad_argument "input line 2" nearest --input "$work/bad_positions"
+printf '0,0\n1e20,0\n' >"$work/far_positions"
+expect_bad_argument "positions[1].x" nearest --input "$work/far_positions"
+expect_bad_argument "--input" nearest --input "$work/no/such/file"
+expect_bad_argument "--threads" nearest --threads 0 --input "$work/positions"
+expect_bad_argument "world.min_distance" nearest --min-distance -1 --input "$work/positions"
+
+# noise: a PNG of the asked size for every channel.
+for channel in f1 f2 f2-f1 id cell; do
+  expect_exit 0 noise --seed 7 --rect -8,-4,24,12 --size 64x32 --channel "$channel" --png "$work/$channel.png"
+  check "noise $channel: PNG signature" test "$(head -c 4 "$work/$channel.png" | tail -c 3)" = PNG
+  # IHDR width and height, big-endian at bytes 16..23.
+  check "noise $channel: 64x32" test "$(od -An -tu1 -j16 -N8 "$work/$channel.png" | tr -s ' ')" = " 0 0 0 64 0 0 0 32"
+done
+check "noise: channels differ" bash -c "! cmp -s '$work/f1.png' '$work/f2.png'"
+expect_bad_argument "--channel" noise --rect 0,0,8,8 --size 8x8 --channel f3 --png "$work/x.png"
+expect_bad_argument "--size" noise --rect 0,0,8,8 --size 8x9 --png "$work/x.png"
+expect_bad_argument "--size" noise --rect 0,0,8,8 --size 0x0 --png "$work/x.png"
+expect_bad_argument "last sample" noise --rect 4294967000,0,4294967592,296 --size 2x1 --png "$work/x.png"
+expect_bad_argument "PNG" noise --rect 0,0,8,8 --size 8x8 --png "$work/no/such/dir/x.png"
+expect_exit 2 noise --rect 0,0,8,8 --size 8x8
+
 echo "$passed passed, $failed failed"
 [[ $failed == 0 ]]
