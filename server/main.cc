@@ -58,8 +58,11 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
   app.add_option("--drain-seconds", flags.drain_seconds,
                  "NOT_SERVING this long on SIGTERM before new calls are refused")
       ->default_str("0");
+  // From the environment too, so the key can come from a secret store
+  // (Kubernetes secretKeyRef) rather than a command line anyone can read.
   app.add_option("--page-token-secret", flags.page_token_secret,
-                 "Key of page tokens (default: derived from the world set)");
+                 "Key of page tokens (default: derived from the world set)")
+      ->envname("SCALLOPD_PAGE_TOKEN_SECRET");
   app.add_option("--default-world", flags.default_world, "World used when a request names none")
       ->default_str(config.default_world);
   app.add_option("--world", world_specs, "Named world NAME:SEED:MIN_DISTANCE:ALGORITHM[:DENSITY]");
