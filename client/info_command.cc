@@ -53,7 +53,10 @@ int RunInfo(const InfoArguments& arguments) {
                                     {"max_query_area", limits.max_query_area()},
                                     {"max_stream_area", limits.max_stream_area()},
                                     {"max_verify_area", limits.max_verify_area()},
-                                    {"max_in_flight", limits.max_in_flight()}}},
+                                    {"max_in_flight", limits.max_in_flight()},
+                                    {"max_nearest_batch", limits.max_nearest_batch()},
+                                    {"max_noise_grid_samples", limits.max_noise_grid_samples()},
+                                    {"max_follow_area", limits.max_follow_area()}}},
                                   {"default_world", info.default_world()},
                                   {"worlds", names},
                                   {"world",
@@ -74,6 +77,9 @@ int RunInfo(const InfoArguments& arguments) {
             << "max stream area     " << limits.max_stream_area() << " d^2 (StreamPoints)\n"
             << "max verify area     " << limits.max_verify_area() << " d^2 (Verify)\n"
             << "max in flight       " << limits.max_in_flight() << " requests\n"
+            << "max nearest batch   " << limits.max_nearest_batch() << " positions\n"
+            << "max noise grid      " << limits.max_noise_grid_samples() << " samples\n"
+            << "max follow area     " << limits.max_follow_area() << " d^2 (Follow)\n"
             << "default world       " << info.default_world() << '\n'
             << "worlds             ";
   for (const std::string& name : names) std::cout << ' ' << name;
