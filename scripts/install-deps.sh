@@ -10,7 +10,7 @@ packages=(
   libboost-dev libboost-system-dev
   libprotobuf-dev protobuf-compiler libgrpc++-dev protobuf-compiler-grpc
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
-  libyaml-cpp-dev libfftw3-dev libpng-dev libxxhash-dev libssl-dev
+  libyaml-cpp-dev libfftw3-dev libpng-dev libssl-dev
   python3 python3-grpcio python3-protobuf python3-yaml
 )
 
