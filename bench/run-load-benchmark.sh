@@ -45,13 +45,18 @@ done
 work=$(mktemp -d /tmp/scallop-load-XXXXXX)
 pids=()
 cleanup() {
+  local code=$?
   for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
   wait 2>/dev/null || true
-  rm -rf "$work"
+  if [[ $code -eq 0 ]]; then rm -rf "$work"; else echo "# failed; servers' logs kept in $work" >&2; fi
 }
 trap cleanup EXIT
 
 declare -A address pid metrics idle_rss
+
+# cpu_ticks PID: user + system CPU time of the process, in clock ticks.
+cpu_ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }
+ticks_per_second=$(getconf CLK_TCK)
 
 rss_kib() { awk '/^VmRSS:/ {print $2}' "/proc/$1/status"; }
 mib() { awk -v kib="$1" 'BEGIN { printf "%.1f", kib / 1024 }'; }
@@ -136,17 +141,26 @@ run() {
   local hits_before misses_before
   hits_before=$(cache_counter "$name" scallop_cache_hits_total)
   misses_before=$(cache_counter "$name" scallop_cache_misses_total)
+  local cpu_before
+  cpu_before=$(cpu_ticks "${pid[$name]}")
   local row
   row=$("$generator" --target "${address[$name]}" --mode "$mode" --streams "$streams" \
     --duration "$duration" --requests "$requests" --tile "$tile" --warm-side "$warm_side" \
     --output tsv) || echo "# $name $mode $streams: errors (see the row)" >&2
-  kill "$sampler"
+  kill "$sampler" 2>/dev/null || true
   wait "$sampler" 2>/dev/null || true
+  if ! kill -0 "${pid[$name]}" 2>/dev/null; then
+    echo "$name exited during the $mode run with $streams streams; its log ends:" >&2
+    tail -5 "$work/$name.err" >&2
+    exit 1
+  fi
+  local cpu=$(($(cpu_ticks "${pid[$name]}") - cpu_before))
   local hits misses
   hits=$(($(cache_counter "$name" scallop_cache_hits_total) - hits_before))
   misses=$(($(cache_counter "$name" scallop_cache_misses_total) - misses_before))
-  printf '%s\t%s\t%s\t%s\t%s\n' "$name" "$row" "$(mib "$(sort -n "$samples" | tail -1)")" \
-    "$hits" "$misses" >>"$rows"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$row" "$(mib "$(sort -n "$samples" | tail -1)")" \
+    "$hits" "$misses" "$(awk -v t="$cpu" -v hz="$ticks_per_second" 'BEGIN { print t / hz }')" \
+    >>"$rows"
 }
 
 # Null and warm side by side for each stream count, so the ratio compares
@@ -162,14 +176,17 @@ for streams in $streams_list; do
 done
 
 echo
-printf '%-9s %-5s %7s %9s %10s %11s %7s %8s %8s %8s %8s %6s %8s %8s %8s\n' server mode \
+printf '%-9s %-5s %7s %9s %10s %11s %7s %8s %8s %8s %8s %6s %8s %8s %8s %10s\n' server mode \
   streams requests requests/s points/s MB/s p50_ms p90_ms p99_ms max_ms errors rss_MiB \
-  hits/req gen/req
-# Row columns: server, load_generator --tsv-header, RSS peak, hits, misses.
+  hits/req gen/req cpu_us/req
+# Row columns: server, load_generator --tsv-header, RSS peak, hits, misses,
+# server CPU seconds. CPU per request is the least noisy figure on a busy
+# machine: other processes delay the server but do not add to its CPU time.
 awk -F'\t' '{
   per = $4 + $5 > 0 ? 1 / ($4 + $5) : 0
-  printf "%-9s %-5s %7d %9d %10.0f %11.3g %7.1f %8.3f %8.3f %8.3f %8.3f %6d %8.1f %8.1f %8.1f\n",
-    $1, $2, $3, $4, $7, $8, $9 / 1e6, $10, $11, $12, $13, $5, $14, $15 * per, $16 * per}' "$rows"
+  printf "%-9s %-5s %7d %9d %10.0f %11.3g %7.1f %8.3f %8.3f %8.3f %8.3f %6d %8.1f %8.1f %8.1f %10.0f\n",
+    $1, $2, $3, $4, $7, $8, $9 / 1e6, $10, $11, $12, $13, $5, $14, $15 * per, $16 * per,
+    $17 * 1e6 * per}' "$rows"
 
 echo
 awk -F'\t' '
