@@ -126,6 +126,69 @@ run "$scallopd" --world "x:1:0:a3"
 expect_status 2 "bad --world"
 if grep -q "world.min_distance" "$work/err"; then pass; else fail "bad --world message: $(cat "$work/err")"; fi
 
+# scallop follow: a step, a teleport, a return and a zoom. The union of its
+# CSV is the union of `scallop plane` over the same rectangles; stderr has a
+# line per step; a bad path line exits 2 naming it; a server error exits 1.
+printf '%s\n' '# x0,y0,x1,y1' 0,0,40,30 3,1,43,31 1000,0,1040,30 '' 0,0,40,30 -20,-20,60,50 >"$work/path"
+run "$scallop" follow --server "$server" --seed 7 --path "$work/path" --keep-margin 4
+expect_status 0 "follow"
+if [ "$(head -1 "$work/out")" = "id,x,y" ]; then pass; else fail "follow CSV header"; fi
+tail -n +2 "$work/out" | sort -u >"$work/follow.sorted"
+for rect in 0,0,40,30 3,1,43,31 1000,0,1040,30 -20,-20,60,50; do
+  "$scallop" plane --seed 7 --rect "$rect" | tail -n +2
+done | sort -u >"$work/plane.sorted"
+if [ -s "$work/plane.sorted" ] && cmp -s "$work/follow.sorted" "$work/plane.sorted"; then pass; else fail "follow CSV differs from plane over the path"; fi
+if [ "$(grep -c '^step [0-9]*: [0-9]* points, [0-9]* bytes, .* ms$' "$work/err")" -eq 5 ]; then pass; else fail "follow per-step report: $(cat "$work/err")"; fi
+printf '0,0,10,10\n5,0,1,1\n' >"$work/bad-path"
+run "$scallop" follow --server "$server" --seed 7 --path "$work/bad-path"
+expect_status 2 "follow bad path line"
+if grep -q -- "--path line 2: X0 must be less than X1" "$work/err"; then pass; else fail "follow bad path message: $(cat "$work/err")"; fi
+printf '1e10,0,1.00001e10,10\n' >"$work/far-path"
+run "$scallop" follow --server "$server" --seed 7 --path "$work/far-path"
+expect_status 1 "follow beyond the precision range"
+if grep -q "OUT_OF_RANGE: viewport.x0" "$work/err"; then pass; else fail "follow OUT_OF_RANGE message: $(cat "$work/err")"; fi
+
+# scallop nearest and noise through scallopd: the same CSV and PNG as the
+# local core, bit for bit; in batches of the server's max_nearest_batch (a
+# server allowing 7 answers 101 positions in 15 calls); server errors exit 1.
+awk 'BEGIN { srand(5); for (k = 0; k < 100; ++k) printf "%.17g,%.17g\n", rand() * 100 - 50, rand() * 100 - 50 }' >"$work/positions"
+echo "16,-32" >>"$work/positions"
+run "$scallop" nearest --seed 7 --input "$work/positions"
+cp "$work/out" "$work/nearest.csv"
+run "$scallop" nearest --server "$server" --seed 7 --input "$work/positions"
+expect_status 0 "nearest --server"
+if [ "$(wc -l <"$work/out")" -eq 102 ] && cmp -s "$work/out" "$work/nearest.csv"; then pass; else fail "nearest --server CSV differs from local"; fi
+run "$scallop" nearest --server "$server" --world coast --input "$work/positions"
+if cmp -s "$work/out" "$work/nearest.csv"; then pass; else fail "nearest --world coast differs from --seed 7"; fi
+printf '0,0\n1e20,0\n' >"$work/far_positions"
+run "$scallop" nearest --server "$server" --seed 7 --input "$work/far_positions"
+expect_status 1 "nearest beyond the precision range"
+if grep -q "OUT_OF_RANGE: positions\[1\].x" "$work/err"; then pass; else fail "nearest OUT_OF_RANGE message: $(cat "$work/err")"; fi
+"$scallop" noise --seed 7 --rect -8,-4,24,12 --size 64x32 --channel f2-f1 --png "$work/local.png"
+run "$scallop" noise --server "$server" --world coast --rect -8,-4,24,12 --size 64x32 --channel f2-f1 --png "$work/remote.png"
+expect_status 0 "noise --server"
+if cmp -s "$work/local.png" "$work/remote.png"; then pass; else fail "noise --server PNG differs from local"; fi
+
+printf 'listen: 127.0.0.1:0\nmax_nearest_batch: 7\nmax_noise_grid_samples: 5000\n' >"$work/small.yaml"
+mkfifo "$work/address3"
+"$scallopd" --config "$work/small.yaml" >"$work/address3" 2>"$work/server3.log" &
+small_pid=$!
+read -r line <"$work/address3"
+small=${line#scallopd listening on }
+for _ in $(seq 100); do
+  "$scallop" info --server "$small" >/dev/null 2>&1 && break
+  sleep 0.1
+done
+run "$scallop" nearest --server "$small" --seed 7 --input "$work/positions"
+expect_status 0 "nearest in batches of 7"
+if cmp -s "$work/out" "$work/nearest.csv"; then pass; else fail "nearest in batches of 7 differs from local"; fi
+if [ "$(grep -c Nearest "$work/server3.log")" -eq 15 ]; then pass; else fail "nearest: want 15 calls of 7: $(grep -c Nearest "$work/server3.log")"; fi
+run "$scallop" noise --server "$small" --seed 7 --rect 0,0,100,100 --size 100x100 --png "$work/big.png"
+expect_status 1 "noise over max_noise_grid_samples"
+if grep -q "INVALID_ARGUMENT: width \* height.*max_noise_grid_samples" "$work/err"; then pass; else fail "noise limit message: $(cat "$work/err")"; fi
+kill -TERM "$small_pid"
+wait "$small_pid" || fail "small scallopd did not exit 0"
+
 kill -TERM "$server_pid"
 wait "$server_pid" && server_status=0 || server_status=$?
 server_pid=
