@@ -1,0 +1,168 @@
+// A simulated player walking 10,000 d at constant speed with a 64 d x 64 d
+// view, against an in-process scallopd on a loopback port, three ways in one
+// run: Follow with prefetch (velocity sent), Follow without (velocity 0), and
+// the baseline, naive re-querying of the whole view with GetPoints each step.
+// Each walk is on a fresh world, so every region starts cold.
+//
+//   build/bench/follow_bench --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <boost/asio/thread_pool.hpp>
+#include <chrono>
+#include <limits>
+#include <map>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "follow_client.h"
+#include "page_token.h"
+#include "scallop_client.h"
+#include "scallop_service.h"
+#include "server_config.h"
+#include "world_messages.h"
+#include "world_registry.h"
+
+namespace scallop {
+namespace {
+
+constexpr double kWalkLength = 10000;                    // in d
+constexpr double kView = 64;                             // view side, in d
+constexpr double kStep = 4;                              // d moved per update
+constexpr auto kPace = std::chrono::microseconds(2000);  // one update every 2 ms
+constexpr double kSpeed = kStep / 0.002;                 // 2000 d/s
+
+// scallopd's parts, assembled as server/main.cc does, on 127.0.0.1:0.
+class InProcessServer {
+ public:
+  InProcessServer()
+      : worlds_(config_.worlds, config_.default_world),
+        page_tokens_("follow-bench"),
+        engine_({.cache_bytes = config_.cache_megabytes << 20,
+                 .threads = config_.threads,
+                 .max_query_area = std::numeric_limits<double>::infinity()}),
+        pool_(static_cast<size_t>(config_.threads)),
+        service_(config_, worlds_, page_tokens_, engine_, pool_) {
+    grpc::ServerBuilder builder;
+    int port = 0;
+    builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port);
+    builder.RegisterService(&service_);
+    server_ = builder.BuildAndStart();
+    address_ = "127.0.0.1:" + std::to_string(port);
+  }
+  ~InProcessServer() {
+    server_->Shutdown();
+    pool_.join();
+  }
+  const std::string& address() const { return address_; }
+
+ private:
+  server::ServerConfig config_;
+  server::WorldRegistry worlds_;
+  server::PageTokenCodec page_tokens_;
+  PlaneEngine engine_;
+  boost::asio::thread_pool pool_;
+  server::ScallopService service_;
+  std::unique_ptr<grpc::Server> server_;
+  std::string address_;
+};
+
+struct WalkResult {
+  int64_t steps = 0, bytes = 0, messages = 0, points = 0;
+  double seconds = 0;
+  std::vector<double> latencies_ms;  // per step, send to last message
+
+  double Percentile(double p) {
+    std::sort(latencies_ms.begin(), latencies_ms.end());
+    const auto k = static_cast<size_t>(p * static_cast<double>(latencies_ms.size() - 1) + 0.5);
+    return latencies_ms[k];
+  }
+};
+
+enum class Mode { kFollowPrefetch, kFollowNoPrefetch, kNaiveGetPoints };
+
+Rect ViewAt(int step, double y) {
+  const double x = step * kStep;
+  return {x, y, x + kView, y + kView};
+}
+
+// One walk along +x at row `y`; updates paced every kPace (sent at once when
+// behind), so prefetch has the time a real player's motion gives it.
+WalkResult Walk(const std::string& address, Mode mode, const World& world, double y) {
+  client::ScallopClient client = client::ScallopClient::Connect(address);
+  client::FollowSession session(client);
+  WalkResult result;
+  const int steps = static_cast<int>(kWalkLength / kStep);
+  const auto start = std::chrono::steady_clock::now();
+  for (int step = 0; step < steps; ++step) {
+    std::this_thread::sleep_until(start + step * kPace);
+    const Rect view = ViewAt(step, y);
+    const auto sent = std::chrono::steady_clock::now();
+    if (mode == Mode::kNaiveGetPoints) {
+      v1::GetPointsRequest request;
+      *request.mutable_world() = WorldToMessage(world);
+      *request.mutable_rect() = RectToMessage(view);
+      v1::GetPointsResponse response;
+      if (!client.GetPoints(request, response).ok()) std::abort();
+      result.bytes += static_cast<int64_t>(response.ByteSizeLong());
+      result.messages += 1;
+      result.points += response.points().ids_size();
+    } else {
+      v1::FollowRequest request;
+      if (step == 0) *request.mutable_world() = WorldToMessage(world);
+      *request.mutable_viewport() = RectToMessage(view);
+      if (mode == Mode::kFollowPrefetch) request.set_velocity_x(kSpeed);
+      const grpc::Status status = session.Update(request, [&](const v1::FollowResponse& response) {
+        result.bytes += static_cast<int64_t>(response.ByteSizeLong());
+        result.messages += 1;
+        result.points += response.chunk().points().ids_size();
+      });
+      if (!status.ok()) std::abort();
+    }
+    result.latencies_ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sent).count());
+    ++result.steps;
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+void BM_WalkFollowVsNaive(benchmark::State& state) {
+  spdlog::set_level(spdlog::level::warn);  // no request log line per step
+  InProcessServer server;
+  uint64_t seed = 100;
+  for (auto _ : state) {
+    const std::pair<const char*, Mode> modes[] = {{"prefetch", Mode::kFollowPrefetch},
+                                                  {"no_prefetch", Mode::kFollowNoPrefetch},
+                                                  {"naive", Mode::kNaiveGetPoints}};
+    double naive_bytes = 0, prefetch_bytes = 0;
+    std::map<Mode, double> p99;
+    for (const auto& [name, mode] : modes) {
+      WalkResult walk = Walk(server.address(), mode, World{.seed = ++seed}, 0);
+      const std::string prefix = name;
+      state.counters[prefix + "_bytes_per_s"] = static_cast<double>(walk.bytes) / walk.seconds;
+      state.counters[prefix + "_msgs_per_s"] = static_cast<double>(walk.messages) / walk.seconds;
+      state.counters[prefix + "_bytes_per_step"] =
+          static_cast<double>(walk.bytes) / static_cast<double>(walk.steps);
+      state.counters[prefix + "_p50_ms"] = walk.Percentile(0.50);
+      p99[mode] = walk.Percentile(0.99);
+      state.counters[prefix + "_p99_ms"] = p99[mode];
+      if (mode == Mode::kNaiveGetPoints) naive_bytes = static_cast<double>(walk.bytes);
+      if (mode == Mode::kFollowPrefetch) prefetch_bytes = static_cast<double>(walk.bytes);
+    }
+    // The ratios are the figures that count on a shared, noisy machine.
+    state.counters["naive_over_follow_bytes"] = naive_bytes / prefetch_bytes;
+    state.counters["no_prefetch_over_prefetch_p99"] =
+        p99[Mode::kFollowNoPrefetch] / p99[Mode::kFollowPrefetch];
+    state.counters["naive_over_prefetch_p99"] =
+        p99[Mode::kNaiveGetPoints] / p99[Mode::kFollowPrefetch];
+  }
+}
+BENCHMARK(BM_WalkFollowVsNaive)->Iterations(1)->Unit(benchmark::kSecond);
+
+}  // namespace
+}  // namespace scallop
+
+BENCHMARK_MAIN();
