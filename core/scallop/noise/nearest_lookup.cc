@@ -149,6 +149,7 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
 Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> positions,
                                   std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of) {
   const RegionLayout layout(world.min_distance);
+  const double inverse_side = 1.0 / layout.side();
   struct CallSlot {
     RegionKey key;
     uint32_t grid = 0;
@@ -163,7 +164,13 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
   for (size_t k = 0; k < positions.size(); ++k) {
     const Vec2 p = positions[k];
     if (grids.empty() || !current_region.Contains(p)) {
-      const RegionKey key = ClampedRegionOf(layout, p);
+      // A guess by multiplication, checked against the region's own edges
+      // (exact); RegionLayout's division only when the guess is off.
+      RegionKey key{static_cast<int64_t>(std::floor(p.x * inverse_side)),
+                    static_cast<int64_t>(std::floor(p.y * inverse_side))};
+      key.i = std::clamp(key.i, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
+      key.j = std::clamp(key.j, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
+      if (!layout.RegionRect(key).Contains(p)) key = ClampedRegionOf(layout, p);
       CallSlot& slot = slots[CallSlotOf(key, slots.size())];
       if (!slot.used || slot.key != key) {
         // A region met again after its slot was reused gets a second entry:
