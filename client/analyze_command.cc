@@ -121,6 +121,7 @@ Rect BoundingSquare(const std::vector<std::vector<Vec2>>& sets, double min_dista
 
 StatusOr<std::vector<SeriesPlan>> PlanFiles(const AnalyzeArguments& arguments) {
   if (!arguments.domain.empty()) return InvalidArgument("--input: cannot be used with --domain");
+  if (arguments.torus) return InvalidArgument("--torus: only with --domain");
   if (arguments.rects.size() > 1) return InvalidArgument("--rect: at most one with --input");
   if (arguments.sets != 1) {
     return InvalidArgument("--sets: with --input, each file is a set; give several --input");
