@@ -67,11 +67,7 @@ size_t NearestSearchGrid::Bytes() const {
 void NearestSearchGrid::ScanRow(int row, int first, int last, Vec2 p, TwoNearest& best) const {
   const uint32_t end = cell_start_[row * kSide + last + 1];
   for (uint32_t k = cell_start_[row * kSide + first]; k < end; ++k) {
-    const double s = SquaredDistanceFrom(p, points_[k]);
-    // Most points are farther than the second so far: one well-predicted
-    // compare; the id is read only on an exact tie.
-    if (s > best.squared2) continue;
-    OfferCandidate(s, ids_[k], points_[k], best);
+    OfferCandidate(SquaredDistanceFrom(p, points_[k]), ids_[k], points_[k], best);
   }
 }
 
