@@ -78,7 +78,8 @@ class NearestSearchGrid {
   // unspecified, when the answer would need cells beyond the grid (p far
   // outside the region, or fewer than 2 points within about 2 d).
   // Cost: 9 cells (about 8 points) when F2 is within p's 3x3 block of cells,
-  // else up to 49; about 30 ns warm. Thread-safe (const).
+  // else up to 49 (for 1% of positions in A3 worlds, 5% in A1 and A2).
+  // Thread-safe (const).
   bool FindTwoNearest(Vec2 p, TwoNearest& best) const;
 
   RegionKey key() const { return key_; }
