@@ -66,7 +66,7 @@ class NearestLookup {
   // machine (image order to random order, docs/performance.md), plus a
   // mutex and a hash lookup per region a batch visits. A missing grid costs
   // one PlaneEngine::Points query of 24 d x 24 d, plus generation when cold.
-  // Memory: 24 bytes a position besides `results`, for grouping by region.
+  // Memory: about 28 bytes a position besides `results`, to group by region.
   Status Nearest(const World& world, std::span<const Vec2> positions,
                  std::span<NearestPoint> results);
 
