@@ -341,11 +341,12 @@ std::vector<double> FrequenciesPerD(const SeriesResult& result, double min_dista
 }
 
 struct Summary {
-  double rho_mean, rho_sd, peak_frequency, peak_power, low_power;
+  double rho_mean, rho_sd, peak_frequency, peak_power, low_power, disk_radius;
 };
 
 // Low-frequency power: the mean radial power below half the peak frequency,
-// the depth of the low-energy annulus (small for good blue noise, 1 for white).
+// the depth of the low-energy disk (small for good blue noise, 1 for white);
+// disk radius: where radial power first reaches 0.5 (NaN if it never does).
 Summary Summarise(const SeriesResult& result, double min_distance) {
   const double sets = result.plan->sets;
   Summary summary{};
@@ -367,6 +368,15 @@ Summary Summarise(const SeriesResult& result, double min_distance) {
     low += result.radial.mean_power[i];
   }
   summary.low_power = count > 0 ? low / count : NAN;
+  // The low-energy disk's radius: where radial power first reaches half of
+  // white noise's.
+  summary.disk_radius = NAN;
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (result.radial.mean_power[i] >= 0.5) {
+      summary.disk_radius = f[i];
+      break;
+    }
+  }
   return summary;
 }
 
@@ -397,6 +407,7 @@ nlohmann::json SeriesJson(const SeriesResult& result, double min_distance) {
           {"fft_grid", PeriodogramGridSize(result.max_frequency)},
           {"peak", {{"frequency_per_d", summary.peak_frequency}, {"power", summary.peak_power}}},
           {"low_frequency_power", summary.low_power},
+          {"low_energy_radius_per_d", summary.disk_radius},
           {"white_noise_anisotropy_db", -10 * std::log10(double(plan.sets))},
           {"radial", radial}};
 }
@@ -415,7 +426,8 @@ void WriteText(std::ostream& out, const std::vector<SeriesResult>& results, doub
         << result.largest_empty_circle / d << " d, spacing violations " << result.spacing_violations
         << '\n'
         << "  radial power peak " << summary.peak_power << " at " << summary.peak_frequency
-        << " / d; mean below half of it " << summary.low_power << '\n';
+        << " / d; mean below half of it " << summary.low_power << '\n'
+        << "  radial power first reaches 0.5 at " << summary.disk_radius << " / d\n";
     if (result.outside > 0)
       out << "  points outside the window, dropped " << result.outside << '\n';
   }
