@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Makes the spectral figures of docs/quality.md with `scallop analyze`, and
-# prints the numbers the text quotes. About 15 minutes on 2 cores, most of it
+# prints the numbers the text quotes. About 10 minutes of one core, most of it
 # Mitchell's best candidate (O(N^2) per set). Usage, from the repository root
 # after a Release build: scripts/make-quality-figures.sh [path/to/scallop]
 set -euo pipefail
