@@ -61,7 +61,7 @@ class FollowReactor final : public grpc::ServerBidiReactor<v1::FollowRequest, v1
   FollowReactor(ScallopService& service, grpc::CallbackServerContext* context)
       : service_(service),
         context_(context),
-        log_("Follow"),
+        log_("Follow", service.metrics_),
         stall_seconds_(service.config_.follow_stall_seconds),
         stall_watch_(std::make_shared<StallWatch>(context->c_call())) {
     stall_watch_->message = StallStatus().error_message();

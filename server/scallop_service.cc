@@ -24,6 +24,13 @@ grpc::Status ScallopService::Overloaded(int limit) {
 
 grpc::ServerUnaryReactor* ScallopService::RunUnary(grpc::CallbackServerContext* context,
                                                    const char* method, UnaryWork work) {
+  return RunUnaryInlineFirst(
+      context, method, [](RequestLog&) { return std::optional<grpc::Status>(); }, std::move(work));
+}
+
+grpc::ServerUnaryReactor* ScallopService::RunUnaryInlineFirst(grpc::CallbackServerContext* context,
+                                                              const char* method, InlineWork quick,
+                                                              UnaryWork work) {
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
   auto log = std::make_shared<RequestLog>(method, metrics_);
   if (!in_flight_.TryAdmit()) {
@@ -32,7 +39,12 @@ grpc::ServerUnaryReactor* ScallopService::RunUnary(grpc::CallbackServerContext* 
     reactor->Finish(status);
     return reactor;
   }
-  // The request and response stay valid until Finish, so the work may use them.
+  if (std::optional<grpc::Status> status = quick(*log)) {
+    log->Finish(*status);
+    in_flight_.Release();
+    reactor->Finish(*status);
+    return reactor;
+  }
   boost::asio::post(request_pool_, [this, context, reactor, log, work = std::move(work)] {
     const grpc::Status status = context->IsCancelled()
                                     ? grpc::Status(grpc::StatusCode::CANCELLED, "client cancelled")

@@ -7,6 +7,7 @@
 
 #include <boost/asio/thread_pool.hpp>
 #include <functional>
+#include <optional>
 
 #include "in_flight_limit.h"
 #include "page_token.h"
@@ -59,12 +60,27 @@ class ScallopService final : public v1::Scallop::CallbackService {
   friend class StreamPointsReactor;
   friend class FollowReactor;
   using UnaryWork = std::function<grpc::Status(RequestLog& log)>;
+  // Work that can answer only if it need not block: nullopt means "not now".
+  using InlineWork = std::function<std::optional<grpc::Status>(RequestLog& log)>;
 
   // Admits the call (or sheds it with RESOURCE_EXHAUSTED), runs `work` on the
   // request pool unless the client has gone, logs and finishes the call.
   grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context, const char* method,
                                      UnaryWork work);
+  // As RunUnary, but first tries `quick` on gRPC's own thread, and hands the
+  // call to the request pool (`work`) only when `quick` returns nullopt. A
+  // warm query is a copy of tens of microseconds; the hop to the pool and
+  // back costs more than that in context switches.
+  grpc::ServerUnaryReactor* RunUnaryInlineFirst(grpc::CallbackServerContext* context,
+                                                const char* method, InlineWork quick,
+                                                UnaryWork work);
   static grpc::Status Overloaded(int limit);
+
+  // GetPoints' answer; with may_block false, nullopt when the rectangle's
+  // regions are not all cached (nothing is generated or waited on then).
+  std::optional<grpc::Status> AnswerGetPoints(const v1::GetPointsRequest& request,
+                                              v1::GetPointsResponse& response, RequestLog& log,
+                                              bool may_block);
 
   // The world and rectangle a query names, resolved, logged and checked
   // against `max_area` (named `limit_name` in errors): the prelude of every

@@ -34,8 +34,8 @@ Status PlaneEngine::ValidateQuery(const World& world, const Rect& rect) const {
   for (const auto& [field, value] : corners) {
     if (!std::isfinite(value)) return InvalidArgument(std::string(field) + ": must be finite");
     if (std::abs(value) > limit) {
-      return OutOfRange(std::string(field) + ": |value| must be at most 2^32 * min_distance = " +
-                        std::to_string(limit));
+      return OutOfRange(std::string(field) +
+                        ": |value| must be at most 2^32 * min_distance = " + std::to_string(limit));
     }
   }
   if (!(rect.x0 < rect.x1)) return InvalidArgument("rect: x0 must be less than x1");
@@ -65,8 +65,8 @@ std::vector<RegionKey> PlaneEngine::RegionsOverlapping(const World& world, const
   const RegionKey low = layout.RegionOf(rect.x0, rect.y0);
   // The half-open rectangle ends just before x1: the last column is the one
   // owning the largest double below x1.
-  const RegionKey high = layout.RegionOf(std::nextafter(rect.x1, rect.x0),
-                                         std::nextafter(rect.y1, rect.y0));
+  const RegionKey high =
+      layout.RegionOf(std::nextafter(rect.x1, rect.x0), std::nextafter(rect.y1, rect.y0));
   std::vector<RegionKey> keys;
   for (int64_t j = low.j; j <= high.j; ++j) {
     for (int64_t i = low.i; i <= high.i; ++i) keys.push_back({i, j});
@@ -111,7 +111,8 @@ std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
       for (const RegionKey& dependency : LowerRankedNeighbours(mine[n])) {
         neighbours.push_back(resolved.at(dependency).get());
       }
-      auto region = std::make_shared<const RegionPoints>(GenerateRegion(world, mine[n], neighbours));
+      auto region =
+          std::make_shared<const RegionPoints>(GenerateRegion(world, mine[n], neighbours));
       cache_.Publish(world, mine[n], region);
       generated[n] = std::move(region);
     };
@@ -137,32 +138,35 @@ std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
   return result;
 }
 
-StatusOr<PlanePoints> PlaneEngine::Points(const World& world, const Rect& rect) {
+StatusOr<std::vector<RegionHandle>> PlaneEngine::Regions(const World& world, const Rect& rect) {
   if (Status status = ValidateQuery(world, rect); !status.ok()) return status;
-  const RegionLayout layout(world.min_distance);
-  const std::vector<RegionHandle> regions = Resolve(world, RegionsOverlapping(world, rect));
+  return Resolve(world, RegionsOverlapping(world, rect));
+}
+
+std::optional<std::vector<RegionHandle>> PlaneEngine::CachedRegions(const World& world,
+                                                                    const Rect& rect) {
+  std::vector<RegionHandle> regions;
+  for (const RegionKey& key : RegionsOverlapping(world, rect)) {
+    RegionHandle region = cache_.Peek(world, key);
+    if (!region) return std::nullopt;
+    regions.push_back(std::move(region));
+  }
+  return regions;
+}
+
+StatusOr<PlanePoints> PlaneEngine::Points(const World& world, const Rect& rect) {
+  StatusOr<std::vector<RegionHandle>> regions = Regions(world, rect);
+  if (!regions.ok()) return regions.status();
   size_t upper_bound = 0;
-  for (const RegionHandle& region : regions) upper_bound += region->points.size();
+  for (const RegionHandle& region : *regions) upper_bound += region->points.size();
   PlanePoints result;
   result.positions.reserve(upper_bound);
   result.ids.reserve(upper_bound);
-  for (const RegionHandle& region : regions) {
-    const std::vector<Vec2>& points = region->points;
-    const Rect owned = layout.RegionRect(region->key);
-    const uint64_t first_id = EncodePointId(region->key, 0);
-    // Ids of one region are consecutive: the index sits in the low bits.
-    if (rect.x0 <= owned.x0 && owned.x1 <= rect.x1 && rect.y0 <= owned.y0 && owned.y1 <= rect.y1) {
-      result.positions.insert(result.positions.end(), points.begin(), points.end());
-      for (size_t k = 0; k < points.size(); ++k) result.ids.push_back(first_id + k);
-      continue;
-    }
-    for (size_t k = 0; k < points.size(); ++k) {
-      if (rect.Contains(points[k])) {
-        result.positions.push_back(points[k]);
-        result.ids.push_back(first_id + k);
-      }
-    }
-  }
+  VisitPoints(*regions, RegionLayout(world.min_distance), rect, 0, upper_bound,
+              [&](const Vec2& position, uint64_t id) {
+                result.positions.push_back(position);
+                result.ids.push_back(id);
+              });
   return result;
 }
 

@@ -4,13 +4,17 @@
 // every request of a server.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "scallop/base/status.h"
 #include "scallop/geometry/rect.h"
+#include "scallop/plane/point_id.h"
 #include "scallop/plane/region_cache.h"
+#include "scallop/plane/region_layout.h"
 #include "scallop/plane/world.h"
 
 namespace boost::asio {
@@ -50,6 +54,16 @@ class PlaneEngine {
   // max_query_area d^2; OUT_OF_RANGE for a corner beyond 2^32 d.
   StatusOr<PlanePoints> Points(const World& world, const Rect& rect);
 
+  // The regions a query of the rectangle reads, in query order (rows, then
+  // columns), shared: what Points copies from, for callers that copy the
+  // points straight into their own form with VisitPoints. Same cost and errors.
+  StatusOr<std::vector<RegionHandle>> Regions(const World& world, const Rect& rect);
+
+  // The same regions if every one is cached now, else nullopt, having
+  // generated and waited on nothing: for a server answering warm queries on
+  // its network thread. REQUIRES: ValidateQuery(world, rect) is ok.
+  std::optional<std::vector<RegionHandle>> CachedRegions(const World& world, const Rect& rect);
+
   // How many of the world's points lie in the rectangle. Same cost and errors.
   StatusOr<int64_t> Count(const World& world, const Rect& rect);
 
@@ -72,5 +86,34 @@ class PlaneEngine {
   RegionCache cache_;
   std::unique_ptr<boost::asio::thread_pool> pool_;
 };
+
+// Calls visit(position, id) for the points of `regions` (Regions or
+// CachedRegions of the same world and rect) that lie in `rect`, in query
+// order, skipping the first `begin` and stopping before index `end`; returns
+// how many lie in `rect` in all. Regions wholly inside are counted, not tested.
+template <typename Visit>
+size_t VisitPoints(const std::vector<RegionHandle>& regions, const RegionLayout& layout,
+                   const Rect& rect, size_t begin, size_t end, Visit visit) {
+  size_t index = 0;  // of the next point inside, in query order
+  for (const RegionHandle& region : regions) {
+    const std::vector<Vec2>& points = region->points;
+    const Rect owned = layout.RegionRect(region->key);
+    // Ids of one region are consecutive: the index sits in the low bits.
+    const uint64_t first_id = EncodePointId(region->key, 0);
+    if (rect.x0 <= owned.x0 && owned.x1 <= rect.x1 && rect.y0 <= owned.y0 && owned.y1 <= rect.y1) {
+      const size_t from = std::max(begin, index) - index;
+      const size_t to = std::min(points.size(), end > index ? end - index : 0);
+      for (size_t k = from; k < to; ++k) visit(points[k], first_id + k);
+      index += points.size();
+      continue;
+    }
+    for (size_t k = 0; k < points.size(); ++k) {
+      if (!rect.Contains(points[k])) continue;
+      if (index >= begin && index < end) visit(points[k], first_id + k);
+      ++index;
+    }
+  }
+  return index;
+}
 
 }  // namespace scallop

@@ -31,6 +31,16 @@ RegionCache::Lookup RegionCache::Acquire(const World& world, RegionKey key) {
   return {nullptr, {}, true};
 }
 
+RegionHandle RegionCache::Peek(const World& world, RegionKey key) {
+  const Key k{CanonicalWorld(world), key};
+  std::lock_guard lock(mutex_);
+  auto it = entries_.find(k);
+  if (it == entries_.end() || !it->second.region) return nullptr;
+  ++stats_.hits;
+  lru_.splice(lru_.begin(), lru_, it->second.lru);
+  return it->second.region;
+}
+
 void RegionCache::Publish(const World& world, RegionKey key, RegionHandle region) {
   const Key k{CanonicalWorld(world), key};
   std::shared_ptr<std::promise<RegionHandle>> promise;
@@ -39,7 +49,7 @@ void RegionCache::Publish(const World& world, RegionKey key, RegionHandle region
     Entry& entry = entries_.at(k);
     promise = std::move(entry.promise);
     entry.region = region;
-    entry.bytes = static_cast<int64_t>(region->Bytes());
+    entry.bytes = static_cast<int64_t>(region->Bytes()) + kEntryBookkeepingBytes;
     lru_.push_front(k);
     entry.lru = lru_.begin();
     stats_.bytes += entry.bytes;
