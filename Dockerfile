@@ -20,7 +20,7 @@ FROM debian:12-slim AS runtime
 RUN apt-get update \
  && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
       libgrpc++1.51 libgrpc29 libprotobuf32 libabsl20220623 libre2-9 libc-ares2 zlib1g \
-      libssl3 libyaml-cpp0.7 libspdlog1.10 libfmt9 libgmp10 libfftw3-double3 \
+      libssl3 libyaml-cpp0.7 libspdlog1.10 libfmt9 libgmp10 libgmpxx4ldbl libmpfr6 libfftw3-double3 \
       libpng16-16 \
  && rm -rf /var/lib/apt/lists/* \
  && useradd --system --uid 10001 --no-create-home --shell /usr/sbin/nologin scallop
