@@ -32,11 +32,15 @@ Rect ClipToRange(Rect rect, double limit) {
           std::min(rect.y1, limit)};
 }
 
-// Direct-mapped table of the grids one call has used, so that a batch takes
-// the shared cache's mutex about once per region it visits rather than once
-// per position. Up to 1024 slots (every region of a 512 d square), fewer for
-// small batches, whose table would cost more to clear than it saves.
+// Open-addressed table of the grids one call has used, so that a batch takes
+// the shared cache's mutex once per region it visits rather than once per
+// position. Up to 1024 slots (every region of a 512 d square), fewer for
+// small batches, whose table would cost more to clear than it saves. Linear
+// probing up to kMaxProbes slots: a direct-mapped table sent every position
+// of two colliding regions back to the shared cache, a quarter of random
+// positions with 256 regions in 1024 slots.
 constexpr size_t kMaxCallSlots = 1024;
+constexpr size_t kMaxProbes = 16;
 
 size_t CallSlotCount(size_t positions) {
   return std::min(kMaxCallSlots, std::bit_ceil(std::max<size_t>(positions, 1)));
@@ -171,16 +175,20 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
       key.i = std::clamp(key.i, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
       key.j = std::clamp(key.j, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
       if (!layout.RegionRect(key).Contains(p)) key = ClampedRegionOf(layout, p);
-      CallSlot& slot = slots[CallSlotOf(key, slots.size())];
-      if (!slot.used || slot.key != key) {
-        // A region met again after its slot was reused gets a second entry:
-        // harmless, the grid is shared.
+      const size_t home = CallSlotOf(key, slots.size());
+      CallSlot* slot = &slots[home];
+      for (size_t probe = 1; slot->used && slot->key != key && probe < kMaxProbes; ++probe) {
+        slot = &slots[(home + probe) & (slots.size() - 1)];
+      }
+      if (!slot->used || slot->key != key) {
+        // With every probed slot taken, the last is reused: a region met
+        // again then gets a second entry, harmless since the grid is shared.
         StatusOr<GridHandle> grid = Grid(world, key);
         if (!grid.ok()) return grid.status();
-        slot = {key, static_cast<uint32_t>(grids.size()), true};
+        *slot = {key, static_cast<uint32_t>(grids.size()), true};
         grids.push_back(std::move(*grid));
       }
-      current = slot.grid;
+      current = slot->grid;
       current_region = layout.RegionRect(key);
     }
     grid_of[k] = current;
