@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "scallop/random/rng.h"
@@ -101,6 +102,60 @@ TEST(NearestSearchGridTest, CertifiedAnswersAreExactOnSparseSubsets) {
   }
   EXPECT_GT(certified, 1000);
   EXPECT_GT(refused, 1000);  // sparse sets often need cells beyond the grid
+}
+
+// The search's first pass orders points by their squared distance with its
+// low 16 bits replaced by an index, reading a fixed number of points per row
+// past the row's end. These sets aim at what that could get wrong: distances
+// equal or a few ulps apart (three ways, so that the second place is
+// contested too), positions exactly on points (squared distance 0), rows of
+// many points, and the smallest and largest d near the precision limit.
+TEST(NearestSearchGridTest, FirstPassIsExactOnNearTiesPointsDenseRowsAndExtremeScales) {
+  int certified = 0, ties = 0;
+  auto check = [&](const NearestSearchGrid& grid, const PointSet& set, Vec2 p) {
+    TwoNearest found;
+    if (!grid.FindTwoNearest(p, found)) return;
+    ++certified;
+    if (found.squared1 == found.squared2) ++ties;
+    EXPECT_TRUE(Same(ScanAll(set, p), found)) << p.x << ", " << p.y;
+  };
+  for (uint64_t seed = 1; seed <= 40; ++seed) {
+    Rng rng(seed);
+    const double scale = seed % 4 == 0 ? 0x1.0p-256 : seed % 4 == 1 ? 0x1.0p+256 : 1.0;
+    const RegionKey key =
+        seed % 2 == 0 ? RegionKey{(int64_t{1} << 28) - 1, -(int64_t{1} << 28)} : RegionKey{0, 0};
+    const Rect region = RegionLayout(scale).RegionRect(key);
+    auto at = [&](double u, double v) {
+      return Vec2{region.x0 + u * scale, region.y0 + v * scale};
+    };
+    // Background points, 1 to 7 per d^2, and a centre p with three points at
+    // about the same distance r, each a few ulps (0 to 2^12) from the others.
+    const double density = 1.0 + static_cast<double>(seed % 7);
+    const Vec2 p = at(rng.Uniform(0, 16), rng.Uniform(0, 16));
+    const double r = scale * rng.Uniform(0.05, 0.2);
+    PointSet set;
+    for (int k = 0; k < static_cast<int>(24 * 24 * density); ++k) {
+      const Vec2 q = at(rng.Uniform(-4, 20), rng.Uniform(-4, 20));
+      if (std::abs(q.x - p.x) > 2 * r || std::abs(q.y - p.y) > 2 * r) set.points.push_back(q);
+    }
+    for (Vec2 offset : {Vec2{r, 0}, Vec2{0, r}, Vec2{-r, 0}}) {
+      Vec2 q{p.x + offset.x, p.y + offset.y};
+      for (uint64_t ulps = rng.Below(2) ? 0 : uint64_t{1} << rng.Below(13); ulps > 0; --ulps) {
+        q.x = std::nextafter(q.x, q.x + offset.x);
+        q.y = std::nextafter(q.y, q.y + offset.y);
+      }
+      set.points.push_back(q);
+    }
+    for (size_t k = 0; k < set.points.size(); ++k) set.ids.push_back(rng.NextBits());
+    const NearestSearchGrid grid(scale, key, set.points, set.ids);
+    check(grid, set, p);
+    for (int k = 0; k < 50; ++k) {
+      check(grid, set, at(rng.Uniform(0, 16), rng.Uniform(0, 16)));
+      check(grid, set, set.points[rng.Below(set.points.size())]);  // on a point
+    }
+  }
+  EXPECT_GT(certified, 3000);
+  EXPECT_GT(ties, 5);
 }
 
 // With fewer than two points within reach, or a position whose cells leave

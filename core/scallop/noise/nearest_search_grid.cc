@@ -3,6 +3,7 @@
 #include "scallop/noise/nearest_search_grid.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace scallop {
@@ -18,6 +19,43 @@ constexpr double kSlackInD = 0x1.0p-12;
 // When fewer than two points lie in p's 3x3 block, search to this radius,
 // the maximality bound F2 < 2 d (1 + tolerance) with tolerance << 1%.
 constexpr double kSecondBoundInD = 2.01;
+
+// The quick phase 1 ranks points by a 64-bit key: the bits of the squared
+// distance (a non-negative double, so its bits order as it does) with the
+// low kIndexBits replaced by the point's index. One compare then orders by
+// distance to within 2^-36 relative, and the index comes along.
+constexpr int kIndexBits = 16;
+constexpr uint64_t kIndexMask = (uint64_t{1} << kIndexBits) - 1;
+
+// Points examined from the start of each row's run of three cells whatever
+// the run's length (about 2.6 points in A3 worlds), so that the common case
+// has no data-dependent branch; the run's end is passed into later cells and,
+// at the end of the array, into kRunPad far pads.
+constexpr uint32_t kRunPoints = 4;
+constexpr uint32_t kRunPad = kRunPoints;
+
+// Where the pads lie: far enough that their squared distance, about 2^1019,
+// exceeds any real one (positions and points are within 2^288), yet finite,
+// so that a key keeps a finite double's bits.
+constexpr double kPadCoordinate = 0x1.0p+509;
+constexpr double kFarKey = 0x1.0p+1023;
+
+// The three smallest keys offered, kept by min/max without branching on the
+// data. The keys are held as doubles: non-negative finite doubles order as
+// their bits do, and x86's minsd/maxsd are what `a < b ? a : b` compiles to,
+// where integer min/max became unpredictable branches.
+struct SmallestKeys {
+  static double Min(double a, double b) { return a < b ? a : b; }
+  static double Max(double a, double b) { return a > b ? a : b; }
+  double first = kFarKey, second = kFarKey, third = kFarKey;
+  void Offer(double key) {
+    const double high1 = Max(first, key);
+    first = Min(first, key);
+    const double high2 = Max(second, high1);
+    second = Min(second, high1);
+    third = Min(third, high2);
+  }
+};
 
 }  // namespace
 
@@ -48,8 +86,9 @@ NearestSearchGrid::NearestSearchGrid(double min_distance, RegionKey key,
   cell_start_.resize(kSide * kSide + 1);
   for (int c = 0; c < kSide * kSide; ++c) counts[c + 1] += counts[c];
   std::copy(counts.begin(), counts.end(), cell_start_.begin());
-  points_.resize(cell_start_.back());
-  ids_.resize(cell_start_.back());
+  points_.resize(cell_start_.back() + kRunPad, {kPadCoordinate, kPadCoordinate});
+  ids_.resize(cell_start_.back() + kRunPad, 0);
+  quick_ = points_.size() <= kIndexMask + 1;
   // Stable within a cell (input order), so a grid is a pure function of its input.
   for (size_t k = 0; k < points.size(); ++k) {
     if (cell_of[k] < 0) continue;
@@ -64,15 +103,59 @@ size_t NearestSearchGrid::Bytes() const {
          points_.capacity() * sizeof(Vec2) + ids_.capacity() * sizeof(uint64_t);
 }
 
-void NearestSearchGrid::ScanRow(int row, int first, int last, Vec2 p, TwoNearest& best) const {
+void NearestSearchGrid::ScanRow(int row, int first, int last, const Vec2& p,
+                                TwoNearest& best) const {
   const uint32_t end = cell_start_[row * kSide + last + 1];
   for (uint32_t k = cell_start_[row * kSide + first]; k < end; ++k) {
     OfferCandidate(SquaredDistanceFrom(p, points_[k]), ids_[k], points_[k], best);
   }
 }
 
-bool NearestSearchGrid::FindTwoNearest(Vec2 p, TwoNearest& best) const {
-  best = TwoNearest{};
+bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy, double radius1,
+                                           TwoNearest& best) const {
+  // Examines every point of p's 3x3 block, and some beyond it (later cells
+  // of a row, the far pads, possibly a point twice): extra points are real,
+  // or farther than any block reaches, so they cannot make a wrong answer
+  // look right.
+  SmallestKeys keys;
+  const double px = p.x, py = p.y;
+  const Vec2* points = points_.data();
+  auto offer = [&](uint32_t k) {
+    const double dx = px - points[k].x, dy = py - points[k].y;  // SquaredDistanceFrom's order
+    const uint64_t bits = std::bit_cast<uint64_t>(dx * dx + dy * dy);
+    keys.Offer(std::bit_cast<double>((bits & ~kIndexMask) | k));
+  };
+  for (int row = cy - 1; row <= cy + 1; ++row) {
+    const uint32_t first = cell_start_[row * kSide + cx - 1];
+    const uint32_t end = cell_start_[row * kSide + cx + 2];
+    for (uint32_t j = 0; j < kRunPoints; ++j) offer(first + j);
+    for (uint32_t k = first + kRunPoints; k < end; ++k) offer(k);
+  }
+  // Distinct truncated distances: the first key's point is strictly nearer
+  // than every other point examined, and the second's strictly second (a
+  // point examined twice would tie with itself). Ties by id cannot arise, so
+  // the exact order by (squared, id) is this one. Otherwise (ties, or
+  // distances equal to 2^-36), the exact scan decides.
+  const auto first = std::bit_cast<uint64_t>(keys.first);
+  const auto second = std::bit_cast<uint64_t>(keys.second);
+  const auto third = std::bit_cast<uint64_t>(keys.third);
+  if ((first >> kIndexBits) == (second >> kIndexBits) ||
+      (second >> kIndexBits) == (third >> kIndexBits)) {
+    return false;
+  }
+  const auto i1 = static_cast<uint32_t>(first & kIndexMask);
+  const auto i2 = static_cast<uint32_t>(second & kIndexMask);
+  best.squared1 = SquaredDistanceFrom(p, points_[i1]);
+  best.squared2 = SquaredDistanceFrom(p, points_[i2]);
+  if (!(best.squared2 <= radius1 * radius1)) return false;  // phase 2 needed (or a pad)
+  best.id1 = ids_[i1];
+  best.id2 = ids_[i2];
+  best.point1 = points_[i1];
+  best.point2 = points_[i2];
+  return true;
+}
+
+bool NearestSearchGrid::FindTwoNearest(const Vec2& p, TwoNearest& best) const {
   const double gx = (p.x - origin_.x) * inverse_cell_;
   const double gy = (p.y - origin_.y) * inverse_cell_;
   // p's 3x3 block must lie in the grid (this also rejects NaN).
@@ -85,8 +168,10 @@ bool NearestSearchGrid::FindTwoNearest(Vec2 p, TwoNearest& best) const {
   };
 
   // Phase 1: p's cell and its 8 neighbours hold F1 and F2 most of the time.
-  for (int row = cy - 1; row <= cy + 1; ++row) ScanRow(row, cx - 1, cx + 1, p, best);
   const double radius1 = covered(cx - 1, cx + 1, cy - 1, cy + 1);
+  if (quick_ && FindInBlockQuickly(p, cx, cy, radius1, best)) return true;
+  best = TwoNearest{};
+  for (int row = cy - 1; row <= cy + 1; ++row) ScanRow(row, cx - 1, cx + 1, p, best);
   if (best.squared2 <= radius1 * radius1) return true;
 
   // Phase 2: every cell that may hold a point nearer than the second so far

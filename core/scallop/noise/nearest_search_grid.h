@@ -80,16 +80,21 @@ class NearestSearchGrid {
   // Cost: 9 cells (about 8 points) when F2 is within p's 3x3 block of cells,
   // else up to 49 (for 1% of positions in A3 worlds, 5% in A1 and A2).
   // Thread-safe (const).
-  bool FindTwoNearest(Vec2 p, TwoNearest& best) const;
+  // p by reference: passed by value in two registers, GCC 12 rebuilt it
+  // through the stack, a store-forwarding stall that cost more than the scan.
+  bool FindTwoNearest(const Vec2& p, TwoNearest& best) const;
 
   RegionKey key() const { return key_; }
-  size_t PointCount() const { return points_.size(); }
+  size_t PointCount() const { return cell_start_.back(); }
   // Bytes held, for the lookup cache's budget.
   size_t Bytes() const;
 
  private:
   // Examines the points of cells [first, last] of one row.
-  void ScanRow(int row, int first, int last, Vec2 p, TwoNearest& best) const;
+  void ScanRow(int row, int first, int last, const Vec2& p, TwoNearest& best) const;
+  // Phase 1 without branches on the data, for when its answer is certified
+  // and free of near-ties; false sends the caller to the exact scan.
+  bool FindInBlockQuickly(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
 
   RegionKey key_;
   double cell_ = 0;                   // cell side, d
@@ -97,8 +102,9 @@ class NearestSearchGrid {
   double slack_ = 0;                  // bound on rounding in cell coordinates, in world units
   Vec2 origin_;                       // low corner of cell (0, 0)
   std::vector<uint32_t> cell_start_;  // kCellsPerSide^2 + 1 offsets into points_ (row-major)
-  std::vector<Vec2> points_;          // bucketed by cell
+  std::vector<Vec2> points_;          // bucketed by cell, then a few far pads (.cc)
   std::vector<uint64_t> ids_;         // ids_[k] is the id of points_[k]
+  bool quick_ = false;                // points_ indices fit FindInBlockQuickly's keys
 };
 
 }  // namespace scallop
