@@ -42,6 +42,20 @@ Rect ClipToRange(Rect rect, double limit) {
 constexpr size_t kMaxCallSlots = 1024;
 constexpr size_t kMaxProbes = 16;
 
+// The dense window: kWindowSide^2 regions (a 1,024 d square) centred on the
+// first position's region, for batches of at least kWindowMinPositions,
+// which amortise clearing its 16 KB.
+constexpr int64_t kWindowSide = 64;
+constexpr size_t kWindowMinPositions = 1024;
+constexpr uint32_t kNoGrid = ~uint32_t{0};
+
+// floor(v) as an integer, for |v| < 2^62, without a library call (x86-64
+// without SSE4.1 has no floor instruction).
+int64_t FloorToInt64(double v) {
+  const auto truncated = static_cast<int64_t>(v);
+  return truncated - (v < static_cast<double>(truncated) ? 1 : 0);
+}
+
 size_t CallSlotCount(size_t positions) {
   return std::min(kMaxCallSlots, std::bit_ceil(std::max<size_t>(positions, 1)));
 }
@@ -94,8 +108,13 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   if (results.size() != positions.size()) {
     return InvalidArgument("results: must have one entry per position");
   }
+  // ValidatePosition's test inline; the call only to name a bad position.
+  const double limit = RegionLayout(world.min_distance).precision_limit();
   for (size_t k = 0; k < positions.size(); ++k) {
-    if (Status status = ValidatePosition(world, positions[k], k); !status.ok()) return status;
+    const Vec2 p = positions[k];
+    if (!(std::abs(p.x) <= limit && std::abs(p.y) <= limit)) {
+      return ValidatePosition(world, p, k);
+    }
   }
   const World canonical = CanonicalWorld(world);
   int64_t fallbacks = 0;
@@ -160,6 +179,33 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
     bool used = false;
   };
   std::vector<CallSlot> slots(CallSlotCount(positions.size()));
+  // Large batches also get a dense window of regions about the first
+  // position's: a region's grid there is one indexed load, no hash or probe.
+  std::vector<uint32_t> window;
+  RegionKey window_low;
+  if (positions.size() >= kWindowMinPositions) {
+    window.assign(kWindowSide * kWindowSide, kNoGrid);
+    const RegionKey first = ClampedRegionOf(layout, positions[0]);
+    window_low = {first.i - kWindowSide / 2, first.j - kWindowSide / 2};
+  }
+  // The grid of `key` outside the window, or the first time in it.
+  auto grid_by_slot = [&](RegionKey key, uint32_t& index) -> Status {
+    const size_t home = CallSlotOf(key, slots.size());
+    CallSlot* slot = &slots[home];
+    for (size_t probe = 1; slot->used && slot->key != key && probe < kMaxProbes; ++probe) {
+      slot = &slots[(home + probe) & (slots.size() - 1)];
+    }
+    if (!slot->used || slot->key != key) {
+      // With every probed slot taken, the last is reused: a region met
+      // again then gets a second entry, harmless since the grid is shared.
+      StatusOr<GridHandle> grid = Grid(world, key);
+      if (!grid.ok()) return grid.status();
+      *slot = {key, static_cast<uint32_t>(grids.size()), true};
+      grids.push_back(std::move(*grid));
+    }
+    index = slot->grid;
+    return Status::Ok();
+  };
   grid_of.resize(positions.size());
   // The region of the previous position: coherent batches (images, paths)
   // skip the region arithmetic while they stay in it.
@@ -167,29 +213,28 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
   uint32_t current = 0;
   for (size_t k = 0; k < positions.size(); ++k) {
     const Vec2 p = positions[k];
-    if (grids.empty() || !current_region.Contains(p)) {
+    if (k == 0 || !current_region.Contains(p)) {
       // A guess by multiplication, checked against the region's own edges
       // (exact); RegionLayout's division only when the guess is off.
-      RegionKey key{static_cast<int64_t>(std::floor(p.x * inverse_side)),
-                    static_cast<int64_t>(std::floor(p.y * inverse_side))};
+      RegionKey key{FloorToInt64(p.x * inverse_side), FloorToInt64(p.y * inverse_side)};
       key.i = std::clamp(key.i, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
       key.j = std::clamp(key.j, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
-      if (!layout.RegionRect(key).Contains(p)) key = ClampedRegionOf(layout, p);
-      const size_t home = CallSlotOf(key, slots.size());
-      CallSlot* slot = &slots[home];
-      for (size_t probe = 1; slot->used && slot->key != key && probe < kMaxProbes; ++probe) {
-        slot = &slots[(home + probe) & (slots.size() - 1)];
-      }
-      if (!slot->used || slot->key != key) {
-        // With every probed slot taken, the last is reused: a region met
-        // again then gets a second entry, harmless since the grid is shared.
-        StatusOr<GridHandle> grid = Grid(world, key);
-        if (!grid.ok()) return grid.status();
-        *slot = {key, static_cast<uint32_t>(grids.size()), true};
-        grids.push_back(std::move(*grid));
-      }
-      current = slot->grid;
       current_region = layout.RegionRect(key);
+      if (!current_region.Contains(p)) {
+        key = ClampedRegionOf(layout, p);
+        current_region = layout.RegionRect(key);
+      }
+      const auto wi = static_cast<uint64_t>(key.i - window_low.i);
+      const auto wj = static_cast<uint64_t>(key.j - window_low.j);
+      uint32_t* in_window = !window.empty() && wi < kWindowSide && wj < kWindowSide
+                                ? &window[wj * kWindowSide + wi]
+                                : nullptr;
+      if (in_window != nullptr && *in_window != kNoGrid) {
+        current = *in_window;
+      } else {
+        if (Status status = grid_by_slot(key, current); !status.ok()) return status;
+        if (in_window != nullptr) *in_window = current;
+      }
     }
     grid_of[k] = current;
   }
