@@ -111,8 +111,8 @@ void NearestSearchGrid::ScanRow(int row, int first, int last, const Vec2& p,
   }
 }
 
-bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy, double radius1,
-                                           TwoNearest& best) const {
+inline bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy, double radius1,
+                                                  TwoNearest& best) const {
   // Examines every point of p's 3x3 block, and some beyond it (later cells
   // of a row, the far pads, possibly a point twice): extra points are real,
   // or farther than any block reaches, so they cannot make a wrong answer
@@ -155,23 +155,31 @@ bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy, double
   return true;
 }
 
+double NearestSearchGrid::Covered(double gx, double gy, int x_lo, int x_hi, int y_lo,
+                                  int y_hi) const {
+  return std::min({gx - x_lo, x_hi + 1 - gx, gy - y_lo, y_hi + 1 - gy}) * cell_ - slack_;
+}
+
 bool NearestSearchGrid::FindTwoNearest(const Vec2& p, TwoNearest& best) const {
   const double gx = (p.x - origin_.x) * inverse_cell_;
   const double gy = (p.y - origin_.y) * inverse_cell_;
   // p's 3x3 block must lie in the grid (this also rejects NaN).
   if (!(gx >= 1 && gx < kSide - 1 && gy >= 1 && gy < kSide - 1)) return false;
-  const int cx = static_cast<int>(gx), cy = static_cast<int>(gy);  // floor: both >= 1
-  // The radius about p that cells [x_lo, x_hi] x [y_lo, y_hi] surely cover,
-  // less the rounding slack: every point nearer than this was examined.
-  auto covered = [&](int x_lo, int x_hi, int y_lo, int y_hi) {
-    return std::min({gx - x_lo, x_hi + 1 - gx, gy - y_lo, y_hi + 1 - gy}) * cell_ - slack_;
-  };
+  if (quick_) {
+    const int cx = static_cast<int>(gx), cy = static_cast<int>(gy);  // floor: both >= 1
+    const double radius1 = Covered(gx, gy, cx - 1, cx + 1, cy - 1, cy + 1);
+    if (FindInBlockQuickly(p, cx, cy, radius1, best)) return true;
+  }
+  return FindTwoNearestExactly(p, gx, gy, best);
+}
 
+bool NearestSearchGrid::FindTwoNearestExactly(const Vec2& p, double gx, double gy,
+                                              TwoNearest& best) const {
+  const int cx = static_cast<int>(gx), cy = static_cast<int>(gy);  // floor: both >= 1
   // Phase 1: p's cell and its 8 neighbours hold F1 and F2 most of the time.
-  const double radius1 = covered(cx - 1, cx + 1, cy - 1, cy + 1);
-  if (quick_ && FindInBlockQuickly(p, cx, cy, radius1, best)) return true;
   best = TwoNearest{};
   for (int row = cy - 1; row <= cy + 1; ++row) ScanRow(row, cx - 1, cx + 1, p, best);
+  const double radius1 = Covered(gx, gy, cx - 1, cx + 1, cy - 1, cy + 1);
   if (best.squared2 <= radius1 * radius1) return true;
 
   // Phase 2: every cell that may hold a point nearer than the second so far
@@ -195,7 +203,7 @@ bool NearestSearchGrid::FindTwoNearest(const Vec2& p, TwoNearest& best) const {
     if (x_lo <= cx - 2) ScanRow(row, x_lo, cx - 2, p, best);
     if (cx + 2 <= x_hi) ScanRow(row, cx + 2, x_hi, p, best);
   }
-  const double radius2 = covered(x_lo, x_hi, y_lo, y_hi);
+  const double radius2 = Covered(gx, gy, x_lo, x_hi, y_lo, y_hi);
   return best.squared2 <= radius2 * radius2;
 }
 

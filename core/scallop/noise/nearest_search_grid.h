@@ -92,6 +92,12 @@ class NearestSearchGrid {
  private:
   // Examines the points of cells [first, last] of one row.
   void ScanRow(int row, int first, int last, const Vec2& p, TwoNearest& best) const;
+  // The radius about p (at cell coordinates gx, gy) that cells [x_lo, x_hi] x
+  // [y_lo, y_hi] surely cover, less the rounding slack: every point nearer
+  // than this is in those cells.
+  double Covered(double gx, double gy, int x_lo, int x_hi, int y_lo, int y_hi) const;
+  // Phases 1 and 2 with OfferCandidate: exact whatever the ties.
+  bool FindTwoNearestExactly(const Vec2& p, double gx, double gy, TwoNearest& best) const;
   // Phase 1 without branches on the data, for when its answer is certified
   // and free of near-ties; false sends the caller to the exact scan.
   bool FindInBlockQuickly(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
