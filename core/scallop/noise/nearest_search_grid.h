@@ -77,8 +77,10 @@ class NearestSearchGrid {
   // `points` was complete) can be nearer. Returns false, leaving `best`
   // unspecified, when the answer would need cells beyond the grid (p far
   // outside the region, or fewer than 2 points within about 2 d).
-  // Cost: 9 cells (about 8 points) when F2 is within p's 3x3 block of cells,
-  // else up to 49 (for 1% of positions in A3 worlds, 5% in A1 and A2).
+  // Cost: 12 keys without data-dependent branches (p's 3x3 block of cells,
+  // about 8 points, docs/noise.md) when F2 is within that block and no two
+  // distances tie, else the exact scan of up to 49 cells (for 1% of positions
+  // in A3 worlds, 5% in A1 and A2).
   // Thread-safe (const).
   // p by reference: passed by value in two registers, GCC 12 rebuilt it
   // through the stack, a store-forwarding stall that cost more than the scan.
