@@ -500,26 +500,28 @@ TEST(PlaneContractTest, BadInputGetsAStatusNamingTheField) {
       {"area", good, {0, 0, 2e4, 2e4}, invalid, "area"},
       {"x0 beyond", good, {-2 * limit, 0, 10, 10}, out_of_range, "rect.x0"},
       {"y1 beyond", good, {0, 0, 10, limit + 1}, out_of_range, "rect.y1"},
-      {"d zero", WorldWith(Algorithm::kA3, 0.0, 2, 1), ok_rect, invalid, "world.min_distance"},
-      {"d negative", WorldWith(Algorithm::kA1, -1.0, 1.5, 1), ok_rect, invalid,
+      {"d zero", WorldWith(Algorithm::kA3, 0.0, 2, kGeneratorVersion), ok_rect, invalid, "world.min_distance"},
+      {"d negative", WorldWith(Algorithm::kA1, -1.0, 1.5, kGeneratorVersion), ok_rect, invalid,
        "world.min_distance"},
-      {"d NaN", WorldWith(Algorithm::kA3, kNaN, 2, 1), ok_rect, invalid, "world.min_distance"},
-      {"d inf", WorldWith(Algorithm::kA3, kInfinity, 2, 1), ok_rect, invalid, "world.min_distance"},
-      {"d tiny", WorldWith(Algorithm::kA3, 1e-300, 2, 1), ok_rect, invalid, "world.min_distance"},
-      {"a1 density 1", WorldWith(Algorithm::kA1, 1.0, 1.0, 1), ok_rect, invalid, "world.density"},
-      {"a1 density 2.01", WorldWith(Algorithm::kA1, 1.0, 2.01, 1), ok_rect, invalid,
+      {"d NaN", WorldWith(Algorithm::kA3, kNaN, 2, kGeneratorVersion), ok_rect, invalid, "world.min_distance"},
+      {"d inf", WorldWith(Algorithm::kA3, kInfinity, 2, kGeneratorVersion), ok_rect, invalid, "world.min_distance"},
+      {"d tiny", WorldWith(Algorithm::kA3, 1e-300, 2, kGeneratorVersion), ok_rect, invalid, "world.min_distance"},
+      {"a1 density 1", WorldWith(Algorithm::kA1, 1.0, 1.0, kGeneratorVersion), ok_rect, invalid, "world.density"},
+      {"a1 density 2.01", WorldWith(Algorithm::kA1, 1.0, 2.01, kGeneratorVersion), ok_rect, invalid,
        "world.density"},
-      {"a2 density NaN", WorldWith(Algorithm::kA2, 1.0, kNaN, 1), ok_rect, invalid,
+      {"a2 density NaN", WorldWith(Algorithm::kA2, 1.0, kNaN, kGeneratorVersion), ok_rect, invalid,
        "world.density"},
-      {"a2 density 0.5", WorldWith(Algorithm::kA2, 1.0, 0.5, 1), ok_rect, invalid, "world.density"},
-      {"dart", WorldWith(Algorithm::kDartThrowing, 1.0, 2, 1), ok_rect, invalid, "world.algorithm"},
-      {"bridson", WorldWith(Algorithm::kBridson, 1.0, 2, 1), ok_rect, invalid, "world.algorithm"},
-      {"best candidate", WorldWith(Algorithm::kBestCandidate, 1.0, 2, 1), ok_rect, invalid,
+      {"a2 density 0.5", WorldWith(Algorithm::kA2, 1.0, 0.5, kGeneratorVersion), ok_rect, invalid, "world.density"},
+      {"dart", WorldWith(Algorithm::kDartThrowing, 1.0, 2, kGeneratorVersion), ok_rect, invalid, "world.algorithm"},
+      {"bridson", WorldWith(Algorithm::kBridson, 1.0, 2, kGeneratorVersion), ok_rect, invalid, "world.algorithm"},
+      {"best candidate", WorldWith(Algorithm::kBestCandidate, 1.0, 2, kGeneratorVersion), ok_rect, invalid,
        "world.algorithm"},
-      {"algorithm out of enum", WorldWith(static_cast<Algorithm>(77), 1.0, 2, 1), ok_rect, invalid,
+      {"algorithm out of enum", WorldWith(static_cast<Algorithm>(77), 1.0, 2, kGeneratorVersion), ok_rect, invalid,
        "world.algorithm"},
       {"version 0", WorldWith(Algorithm::kA3, 1.0, 2, 0), ok_rect, invalid,
        "world.generator_version"},
+      {"version retired", WorldWith(Algorithm::kA3, 1.0, 2, kGeneratorVersion - 1), ok_rect,
+       invalid, "world.generator_version"},
       {"version next", WorldWith(Algorithm::kA1, 1.0, 1.5, kGeneratorVersion + 1), ok_rect, invalid,
        "world.generator_version"},
   };
@@ -541,7 +543,7 @@ TEST(PlaneContractTest, BadInputGetsAStatusNamingTheField) {
   EXPECT_EQ(engine.CacheStats().misses, 0) << "a rejected query generated regions";
 
   // Fields that do not matter are not errors: A3 ignores density.
-  EXPECT_TRUE(engine.Points(WorldWith(Algorithm::kA3, 1.0, 7.0, 1), ok_rect).ok());
+  EXPECT_TRUE(engine.Points(WorldWith(Algorithm::kA3, 1.0, 7.0, kGeneratorVersion), ok_rect).ok());
   // The engine still serves.
   EXPECT_TRUE(engine.Points(good, ok_rect).ok());
 }

@@ -20,7 +20,7 @@ TEST(RegionCacheTest, ExactlyOneCallerGeneratesAKey) {
   ASSERT_TRUE(first.must_generate);
   ASSERT_FALSE(second.must_generate);
   ASSERT_TRUE(second.pending.valid());
-  auto region = std::make_shared<const RegionPoints>(RegionPoints{key, {{1, 2}}});
+  auto region = std::make_shared<const RegionPoints>(RegionPoints{key, {{1, 2}}, 0, {}, {}});
   cache.Publish(world, key, region);
   EXPECT_EQ(second.pending.get(), region);  // the waiter gets the publisher's region
   EXPECT_EQ(cache.Acquire(world, key).ready, region);

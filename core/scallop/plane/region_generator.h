@@ -12,14 +12,37 @@
 
 namespace scallop {
 
-// One generated region: its points in generation order. The k-th point's id
-// is EncodePointId(key, k).
+// A region's sampler runs on its rectangle grown by this margin and stops
+// once the rectangle is covered; the points it placed beyond the rectangle
+// (its spill, a natural growth front) are owned by the higher-ranked
+// neighbours they fall in, which adopt them and continue the growth. With
+// S = 16 d, 6.5 d keeps all of a region's points within its 8 neighbours and
+// two regions' spill at least 3 d apart unless they are neighbours.
+// See docs/design.md, "Growing regions".
+inline constexpr double kSamplingMarginInD = 6.5;
+
+// One generated region: the world's points in its rectangle, and the points
+// it placed in higher-ranked neighbours, which those adopt.
 struct RegionPoints {
   RegionKey key;
+  // First the lower-ranked neighbours' spill that lies in the rectangle
+  // (neighbours in LowerRankedNeighbours order, each in its spill order),
+  // then the region's own points in generation order. The k-th point's id
+  // is EncodePointId(key, k).
   std::vector<Vec2> points;
+  // How many of `points` are adopted spill.
+  uint32_t adopted = 0;
+  // The region's own points outside its rectangle, in generation order.
+  std::vector<Vec2> spill;
+  // A3 only (empty otherwise): for the own points, then the spill, whether
+  // the run left them unprocessed. Only those can seed a later region.
+  std::vector<bool> unprocessed;
 
   // Bytes this region holds in memory, for the cache's budget.
-  size_t Bytes() const { return sizeof(RegionPoints) + points.capacity() * sizeof(Vec2); }
+  size_t Bytes() const {
+    return sizeof(RegionPoints) + (points.capacity() + spill.capacity()) * sizeof(Vec2) +
+           unprocessed.capacity() / 8;
+  }
 };
 
 // The lower-ranked 8-neighbours of `key`, in the canonical order the
@@ -27,10 +50,14 @@ struct RegionPoints {
 std::vector<RegionKey> LowerRankedNeighbours(RegionKey key);
 
 // Generates region `key`. `lower_neighbours[n]` must be the generated region
-// LowerRankedNeighbours(key)[n]. Its points within reach of the region (d for
-// A3, r' for A1 and A2) constrain the new ones and seed their neighbourhoods;
-// the region's random stream is Rng(HashWords({WorldFingerprint(world), i, j})).
-// REQUIRES: ValidateWorld(world).ok(). Cost: O(points), about 220 points for A3.
+// LowerRankedNeighbours(key)[n]. The sampler runs on the rectangle grown by
+// kSamplingMarginInD d until the rectangle is covered; the neighbours' points
+// (and spill) within reach of it (2 d for A3, r' for A1 and A2) constrain the
+// new ones and seed their neighbourhoods, and no new point lands in a
+// neighbour's rectangle. The region's random stream is
+// Rng(HashWords({WorldFingerprint(world), i, j})).
+// REQUIRES: ValidateWorld(world).ok(). Cost: O(points placed), about 220 for
+// A3 on average (a rank-0 region places more, a rank-3 region fewer).
 RegionPoints GenerateRegion(const World& world, RegionKey key,
                             std::span<const RegionPoints* const> lower_neighbours);
 

@@ -11,8 +11,9 @@
 
 namespace scallop {
 
-// Region side in units of d. 16 d holds about 220 A3 points; S >= 2 r' keeps
-// every point that constrains a region within its 8 neighbours.
+// Region side in units of d. 16 d holds about 220 A3 points and leaves room
+// for the growth margin of region_generator.h: every point that constrains a
+// region lies within its 8 neighbours.
 inline constexpr double kRegionSideInD = 16.0;
 
 // The guarantees hold for |x|, |y| <= 2^32 d; queries beyond are rejected.

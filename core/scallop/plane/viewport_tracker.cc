@@ -20,10 +20,6 @@ std::string Number(double value) {
   return text.str();
 }
 
-Rect Grown(const Rect& rect, double margin) {
-  return {rect.x0 - margin, rect.y0 - margin, rect.x1 + margin, rect.y1 + margin};
-}
-
 // The lowest and highest region a valid half-open rectangle overlaps: it
 // ends just below x1 and y1.
 std::pair<RegionKey, RegionKey> RegionRange(const RegionLayout& layout, const Rect& rect) {

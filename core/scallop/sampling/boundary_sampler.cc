@@ -38,7 +38,8 @@ void ClipToRectangle(const Rect& rect, Vec2 centre, double radius, AvailableBoun
 
 }  // namespace
 
-std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng) {
+std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
+                                 std::vector<bool>* unprocessed) {
   const Domain& domain = problem.domain;
   const double d = problem.min_distance;
   const double reach = 2.0 * d;  // fixed points lie within 2 d of the domain
@@ -48,35 +49,48 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng) {
   // Only the arc of x's disk at distance exactly `spacing` from the candidate
   // is removed when x is placed: half-width acos(1/2) = pi/3.
   constexpr double kPlacedHalfWidth = kTwoPi / 6;
+  // Placements failing the double-precision checks in a row before the
+  // candidate's boundary is given up as rounding slivers.
+  constexpr int kMaxRejectedPlacements = 64;
 
   PointGrid grid(domain.rect, domain.torus, d, domain.torus ? 0.0 : reach + spacing);
-  std::vector<Vec2> points(problem.fixed_points.begin(), problem.fixed_points.end());
+  std::vector<Vec2> points(problem.inert_points.begin(), problem.inert_points.end());
+  for (size_t i = 0; i < points.size(); ++i) grid.Insert(static_cast<int32_t>(i), points[i]);
+  points.insert(points.end(), problem.fixed_points.begin(), problem.fixed_points.end());
   const size_t fixed_count = points.size();
   std::vector<int32_t> candidates;
-  for (size_t i = 0; i < fixed_count; ++i) {
-    grid.Insert(static_cast<int32_t>(i), points[i]);
-    candidates.push_back(static_cast<int32_t>(i));
+  // With a stop rectangle: how many candidates whose circle reaches it are
+  // left. Once none is, every circle there is consumed, so the rectangle is
+  // covered (F1 is continuous: an uncovered spot would put a spot at
+  // distance exactly `spacing` from a point, on an unconsumed circle).
+  const std::optional<Rect>& stop = problem.stop_when_covered;
+  auto reaches_stop = [&](Vec2 p) { return stop && SquaredDistance(*stop, p) <= spacing_squared; };
+  int64_t pending_near_stop = 0;
+  auto add_candidate = [&](int32_t index, Vec2 p) {
+    grid.Insert(index, p);
+    candidates.push_back(index);
+    pending_near_stop += reaches_stop(p);
+  };
+  for (size_t i = problem.inert_points.size(); i < fixed_count; ++i) {
+    add_candidate(static_cast<int32_t>(i), points[i]);
   }
   auto add_point = [&](Vec2 p) {
     const auto index = static_cast<int32_t>(points.size());
     points.push_back(p);
-    grid.Insert(index, p);
-    candidates.push_back(index);
+    add_candidate(index, p);
   };
-  if (NeedsSeedPoint(problem, spacing)) {
-    const Rect& r = domain.rect;
-    add_point({rng.Uniform(r.x0, r.x1), rng.Uniform(r.y0, r.y1)});
-  }
+  if (NeedsSeedPoint(problem, spacing)) add_point(SeedPoint(problem, rng));
 
   AvailableBoundary boundary;
   std::vector<Vec2> nearby;  // neighbours of the candidate, as images near it
-  while (!candidates.empty()) {
+  while (!candidates.empty() && !(stop && pending_near_stop == 0)) {
     // Uniform choice among candidates, as the paper prescribes.
     const size_t pick = rng.Below(candidates.size());
     const int32_t index = candidates[pick];
     candidates[pick] = candidates.back();
     candidates.pop_back();
     const Vec2 p = points[static_cast<size_t>(index)];
+    pending_near_stop -= reaches_stop(p);
 
     boundary.Reset();
     if (!domain.torus) ClipToRectangle(domain.rect, p, spacing, boundary);
@@ -96,24 +110,35 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng) {
     });
     boundary.Finish();
 
+    int rejected = 0;  // in a row
     while (!boundary.empty()) {
       const double angle = boundary.SampleAngle(rng);
       const Vec2 x = grid.WrapIntoDomain(p + spacing * UnitAt(angle));
       // The margin in `spacing` makes these checks pass; they stay because the
       // contract is promised on the returned doubles, not on an argument.
-      bool valid = domain.torus || domain.rect.Contains(x);
+      bool valid = (domain.torus || domain.rect.Contains(x)) && !InCoveredRect(problem, x);
       for (size_t k = 0; valid && k < nearby.size(); ++k) {
         valid = SquaredDistance(grid.NearestImage(x, nearby[k]), x) >= d_squared;
       }
       valid = valid && SquaredDistance(grid.NearestImage(x, p), x) >= d_squared;
       if (!valid) {
-        // Give up this angle (and a rounding-sized neighbourhood of it).
+        // Give up this angle (and a rounding-sized neighbourhood of it). Only
+        // rounding slivers fail; should a whole arc ever fail, the candidate
+        // is given up rather than drawn from forever.
         boundary.Subtract(angle, 1e-12);
+        if (++rejected == kMaxRejectedPlacements) boundary.Clear();
         continue;
       }
+      rejected = 0;
       add_point(x);
       nearby.push_back(x);
       boundary.Subtract(angle, kPlacedHalfWidth);
+    }
+  }
+  if (unprocessed) {
+    unprocessed->assign(points.size() - fixed_count, false);
+    for (const int32_t index : candidates) {
+      if (static_cast<size_t>(index) >= fixed_count) (*unprocessed)[index - fixed_count] = true;
     }
   }
   points.erase(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(fixed_count));

@@ -15,6 +15,11 @@ namespace scallop {
 // in double precision. Points come back in generation order (fixed points
 // excluded). REQUIRES: a problem that ValidateSamplerOptions accepted.
 // Cost: O(N) time, about 50 bytes of grid per point.
-std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng);
+// With `unprocessed`, also says which returned points the run never picked
+// (unprocessed[k] for point k): only those can have any boundary left when a
+// stop rectangle ended the run early, so a later run that takes the points as
+// fixed may pass the others as inert.
+std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
+                                 std::vector<bool>* unprocessed = nullptr);
 
 }  // namespace scallop

@@ -97,7 +97,10 @@ Status ValidateSamplerOptions(const SamplerOptions& options) {
 
 StatusOr<std::vector<Vec2>> Sample(const SamplerOptions& options) {
   if (Status status = ValidateSamplerOptions(options); !status.ok()) return status;
-  const SamplingProblem problem{options.domain, options.min_distance, options.density, {}};
+  SamplingProblem problem;
+  problem.domain = options.domain;
+  problem.min_distance = options.min_distance;
+  problem.density = options.density;
   // One stream per (seed, algorithm), so that algorithms never share draws.
   Rng rng(HashWords({options.seed, static_cast<uint64_t>(options.algorithm)}));
   switch (options.algorithm) {

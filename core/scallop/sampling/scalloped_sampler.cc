@@ -23,6 +23,10 @@ namespace {
 // given up as a rounding-sized sliver.
 constexpr int kMaxRejectedDraws = 16;
 
+// With a stop rectangle, A1 draws from the neighbourhoods that can reach it
+// alone once their area is below this share of all (see ChooseCandidate).
+constexpr double kSliverShare = 0.02;
+
 class ScallopedSampler {
  public:
   ScallopedSampler(const SamplingProblem& problem, CandidateChoice choice, Rng& rng)
@@ -37,14 +41,15 @@ class ScallopedSampler {
               problem.domain.torus ? 0.0 : 2 * problem.min_distance + spacing_) {}
 
   std::vector<Vec2> Run() {
+    for (const Vec2& p : problem_.inert_points) AddInertPoint(p);
     for (const Vec2& p : problem_.fixed_points) AddPoint(p);
     fixed_count_ = points_.size();
-    if (NeedsSeedPoint(problem_, outer_radius_)) {
-      const Rect& r = problem_.domain.rect;
-      const double x = rng_.Uniform(r.x0, r.x1);
-      AddPoint({x, rng_.Uniform(r.y0, r.y1)});
-    }
+    if (NeedsSeedPoint(problem_, outer_radius_)) AddPoint(SeedPoint(problem_, rng_));
     for (;;) {
+      // Every available spot within r' of a point lies in some neighbourhood,
+      // and F1 is continuous, so once no neighbourhood that can reach the
+      // stop rectangle is left, the rectangle is covered.
+      if (problem_.stop_when_covered && open_near_stop_ == 0) break;
       const int32_t chosen = ChooseCandidate();
       if (chosen < 0) break;
       DrawFrom(chosen);
@@ -58,6 +63,13 @@ class ScallopedSampler {
   int32_t ChooseCandidate() {
     if (choice_ == CandidateChoice::kByArea) {
       if (areas_.Total() <= 0.0) return -1;
+      // A stopped run waits on the stop rectangle's last slivers, which a
+      // choice by area reaches only after most of the domain: once they are
+      // all that is left there, they go first.
+      const double near_stop = near_stop_areas_.Total();
+      if (near_stop > 0.0 && near_stop < kSliverShare * areas_.Total()) {
+        return static_cast<int32_t>(near_stop_areas_.Pick(rng_.Uniform()));
+      }
       return static_cast<int32_t>(areas_.Pick(rng_.Uniform()));
     }
     // A2: uniform over the candidates; emptied ones are dropped when met,
@@ -89,6 +101,7 @@ class ScallopedSampler {
   // The contract's own test, in doubles, against every point near x.
   bool Fits(Vec2 x) const {
     if (!problem_.domain.torus && !problem_.domain.rect.Contains(x)) return false;
+    if (InCoveredRect(problem_, x)) return false;
     bool fits = true;
     grid_.ForEachNear(x, problem_.min_distance, [&](int32_t, Vec2 q) {
       fits = fits && SquaredDistance(q, x) >= d_squared_;
@@ -135,7 +148,19 @@ class ScallopedSampler {
       region.SubtractDisk(n.position, outer_radius_);
     }
     neighbourhoods_.push_back(region.empty() ? ScallopedRegion() : region);
+    open_near_stop_flags_.push_back(0);
     if (choice_ == CandidateChoice::kUniform) candidates_.push_back(index);
+    SetNeighbourhoodArea(index);
+  }
+
+  // A point with an empty neighbourhood from the start. Added before any
+  // other, so there is no earlier neighbourhood for its disk to cut.
+  void AddInertPoint(Vec2 x) {
+    const auto index = static_cast<int32_t>(points_.size());
+    points_.push_back(x);
+    grid_.Insert(index, x);
+    neighbourhoods_.emplace_back();
+    open_near_stop_flags_.push_back(0);
     SetNeighbourhoodArea(index);
   }
 
@@ -159,6 +184,17 @@ class ScallopedSampler {
     if (choice_ == CandidateChoice::kByArea) {
       areas_.Set(static_cast<size_t>(index), region.Area());
     }
+    if (problem_.stop_when_covered) {
+      const auto i = static_cast<size_t>(index);
+      // A1 never draws from a neighbourhood of zero area (a degenerate one
+      // can remain), so only positive area keeps the run going.
+      const bool open = choice_ == CandidateChoice::kByArea ? region.Area() > 0.0 : !region.empty();
+      const bool open_near = open && SquaredDistance(*problem_.stop_when_covered, points_[i]) <=
+                                         outer_radius_ * outer_radius_;
+      open_near_stop_ += static_cast<int64_t>(open_near) - open_near_stop_flags_[i];
+      open_near_stop_flags_[i] = open_near;
+      if (choice_ == CandidateChoice::kByArea) near_stop_areas_.Set(i, open_near ? region.Area() : 0.0);
+    }
   }
 
   struct Nearby {
@@ -181,6 +217,11 @@ class ScallopedSampler {
   ScallopedRegion scratch_region_;  // scratch of AddPoint
   AreaSumTree areas_;             // A1
   std::vector<int32_t> candidates_;  // A2
+  // With a stop rectangle: how many non-empty neighbourhoods belong to points
+  // within r' of it (the only ones that can reach it), and which.
+  int64_t open_near_stop_ = 0;
+  std::vector<uint8_t> open_near_stop_flags_;
+  AreaSumTree near_stop_areas_;  // A1: the areas of those neighbourhoods
 };
 
 }  // namespace
