@@ -15,7 +15,7 @@ struct ServerConfig {
   std::string listen = "127.0.0.1:50051";  // HOST:PORT; port 0 picks a free one
   std::string metrics_listen;              // HOST:PORT of GET /metrics (Prometheus); empty: off
   int threads = 2;                         // request threads, and as many generating regions
-  int64_t cache_megabytes = 512;           // region cache budget (about 20 bytes a point)
+  int64_t cache_megabytes = 512;           // region cache budget (about 32 bytes a point)
   int32_t max_page_size = 65536;           // points per GetPoints page (1.5 MB)
   double max_query_area = 1e6;             // GetPoints, in d^2 (about 850k points)
   double max_stream_area = 1e8;            // StreamPoints, in d^2

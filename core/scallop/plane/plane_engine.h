@@ -24,7 +24,7 @@ class thread_pool;
 namespace scallop {
 
 struct PlaneEngineOptions {
-  // Cache budget in bytes (about 20 bytes per point for A3).
+  // Cache budget in bytes (about 32 bytes per point for A3).
   int64_t cache_bytes = int64_t{512} << 20;
   // Threads that generate regions; 1 generates on the calling thread.
   int threads = 2;
