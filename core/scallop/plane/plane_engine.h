@@ -33,7 +33,7 @@ struct PlaneEngineOptions {
 };
 
 // Points of a query, in a deterministic order: regions by row (j), then
-// column (i), ascending; within a region, in generation order.
+// column (i), ascending; within a region, by point index (point_id.h).
 struct PlanePoints {
   std::vector<Vec2> positions;
   std::vector<uint64_t> ids;  // ids[k] is the id of positions[k] (point_id.h)

@@ -4,12 +4,13 @@
 //   bit 63 ............ 37 | 36 ............ 10 | 9 ...... 0
 //       i mod 2^27 (27 b)  |  j mod 2^27 (27 b)  |  k (10 b)
 //
-// (i, j) is the region, k the point's position in its region's generation
-// order (k < 1024: a 16 d region holds at most 296 points, the hexagonal
-// packing bound). The plane's precision range holds about 2^66 points, more
-// than 64 bits can name, so ids wrap: two points have equal ids only if their
-// regions differ by a multiple of 2^27 in i or j, i.e. they lie at least
-// 2^31 d apart. DecodePointId inverts the layout given any region within
+// (i, j) is the region whose rectangle holds the point, k its position in
+// that region's list: first the points its lower-ranked neighbours placed
+// there, then its own in generation order (region_generator.h). k < 1024: a
+// 16 d region holds at most 296 points, the hexagonal packing bound. The
+// plane's precision range holds about 2^66 points, more than 64 bits can
+// name, so ids wrap: two points have equal ids only if their regions differ
+// by a multiple of 2^27 in i or j, i.e. they lie at least 2^31 d apart. DecodePointId inverts the layout given any region within
 // 2^26 regions (2^30 d) of the point, such as one the query touched.
 #pragma once
 

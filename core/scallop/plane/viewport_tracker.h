@@ -50,7 +50,7 @@ Status ValidateViewportUpdate(const World& world, const ViewportUpdate& update, 
 // The part of one region's points newly sent to the follower.
 struct RegionChunk {
   RegionKey key;
-  PlanePoints points;  // in the region's generation order
+  PlanePoints points;  // in the region's point order (point_id.h)
 };
 
 // Not thread-safe: one tracker per follower, used by one update at a time.
