@@ -1,5 +1,5 @@
-// GenerateRegion: gathers the constraining points, seeds the region's stream
-// and runs the world's sampler on the region's rectangle.
+// GenerateRegion: gathers the neighbours' points (seeding, inert, adopted),
+// grows the region from them until it is covered, and sorts what it placed.
 #include "scallop/plane/region_generator.h"
 
 #include <algorithm>
@@ -30,6 +30,33 @@ std::vector<RegionKey> LowerRankedNeighbours(RegionKey key) {
   return neighbours;
 }
 
+namespace {
+
+// Where a region's run may place points: its rectangle and the parts of its
+// higher-ranked neighbours inside the sampled rectangle. The lower-ranked
+// neighbours' rectangles are covered already.
+std::vector<Rect> OpenRects(const RegionLayout& layout, RegionKey key, const Rect& sampled) {
+  std::vector<Rect> open{layout.RegionRect(key)};
+  for (int64_t dj = -1; dj <= 1; ++dj) {
+    for (int64_t di = -1; di <= 1; ++di) {
+      const RegionKey n{key.i + di, key.j + dj};
+      if (RegionRank(n) <= RegionRank(key)) continue;
+      const Rect r = layout.RegionRect(n);
+      open.push_back({std::max(r.x0, sampled.x0), std::max(r.y0, sampled.y0),
+                      std::min(r.x1, sampled.x1), std::min(r.y1, sampled.y1)});
+    }
+  }
+  return open;
+}
+
+double SquaredDistanceToAny(const std::vector<Rect>& rects, Vec2 p) {
+  double nearest = SquaredDistance(rects.front(), p);
+  for (const Rect& r : rects) nearest = std::min(nearest, SquaredDistance(r, p));
+  return nearest;
+}
+
+}  // namespace
+
 RegionPoints GenerateRegion(const World& world, RegionKey key,
                             std::span<const RegionPoints* const> lower_neighbours) {
   const RegionLayout layout(world.min_distance);
@@ -43,26 +70,13 @@ RegionPoints GenerateRegion(const World& world, RegionKey key,
 
   // The neighbours' points constrain and seed the run; their spill inside the
   // rectangle is adopted; their rectangles, covered already, stay closed.
-  // New points can only land in the open part of the sampled rectangle: the
-  // region and its higher-ranked neighbours. Only points within `reach` of it
-  // can seed anything; the points up to `reach` + 2 d from it are needed to
-  // cut the seeds' neighbourhoods where those enter covered rectangles.
-  std::vector<Rect> open{rect};
-  for (int64_t dj = -1; dj <= 1; ++dj) {
-    for (int64_t di = -1; di <= 1; ++di) {
-      const RegionKey n{key.i + di, key.j + dj};
-      if (RegionRank(n) <= RegionRank(key)) continue;
-      const Rect r = layout.RegionRect(n);
-      open.push_back({std::max(r.x0, sampled.x0), std::max(r.y0, sampled.y0),
-                      std::min(r.x1, sampled.x1), std::min(r.y1, sampled.y1)});
-    }
-  }
-  auto squared_distance_to_open = [&](Vec2 p) {
-    double nearest = SquaredDistance(open.front(), p);
-    for (const Rect& r : open) nearest = std::min(nearest, SquaredDistance(r, p));
-    return nearest;
-  };
-  const double constrain_reach = 2 * reach + 1.01 * d;
+  // Only points within `reach` of the open rectangles can seed anything (and
+  // for A3 only those their own run left unprocessed). Points up to
+  // 2 reach + d from them are needed too, as inert points: a seed's
+  // neighbourhood reaches `reach` further, and where it enters a covered
+  // rectangle the points covering that are within d.
+  const std::vector<Rect> open = OpenRects(layout, key, sampled);
+  const double inert_reach = 2 * reach + 1.01 * d;
 
   RegionPoints region{key, {}, 0, {}, {}};
   std::vector<Vec2> fixed, inert;
@@ -80,10 +94,10 @@ RegionPoints GenerateRegion(const World& world, RegionKey key,
         const bool may_seed = neighbour->unprocessed.empty() || neighbour->unprocessed[k];
         ++k;
         if (SquaredDistance(sampled, p) >= reach * reach) continue;
-        const double squared_distance = squared_distance_to_open(p);
+        const double squared_distance = SquaredDistanceToAny(open, p);
         if (may_seed && squared_distance < reach * reach) {
           fixed.push_back(p);
-        } else if (squared_distance < constrain_reach * constrain_reach) {
+        } else if (squared_distance < inert_reach * inert_reach) {
           inert.push_back(p);
         }
       }
@@ -125,9 +139,8 @@ RegionPoints GenerateRegion(const World& world, RegionKey key,
   }
   // Every placed point is a world point: outside the rectangle it lies in a
   // higher-ranked neighbour (the covered rectangles are closed to it), which
-  // adopts it.
-  // A point whose circle crossed the sampled rectangle's edge had that part
-  // clipped, not covered: it may still seed a later region.
+  // adopts it. A point whose circle crossed the sampled rectangle's edge had
+  // that part clipped, not covered: it may still seed a later region.
   const Rect clipped_near = Grown(sampled, -1.01 * d);
   std::vector<bool> spill_unprocessed;
   for (size_t k = 0; k < placed.size(); ++k) {

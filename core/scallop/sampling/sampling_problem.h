@@ -24,13 +24,14 @@ struct SamplingProblem {
   // of it: new points keep d from them, and they seed neighbourhoods. Never
   // returned. When empty, the sampler starts from one uniform point.
   std::span<const Vec2> fixed_points;
-  // Points placed earlier that only constrain: their whole neighbourhood
-  // (radius r' for A1 and A2, the spacing for A3) lies in covered_rects, so
-  // they never seed one. Skipping their neighbourhoods is what makes a plane
-  // region cost its new points, not the points around it. Never returned.
+  // Points placed earlier that only constrain, because they cannot seed
+  // anything: their whole neighbourhood (radius r' for A1 and A2, the
+  // spacing for A3) lies in covered_rects, or (A3) an earlier run consumed
+  // their circle. Skipping them is what makes a plane region cost its new
+  // points, not the points around it. Never returned.
   std::span<const Vec2> inert_points;
-  // Rectangles the fixed points already cover (no spot in them is farther
-  // than the spacing from a fixed point): no new point may land in them. A
+  // Rectangles the fixed and inert points already cover (no spot in them is
+  // farther than the spacing from one): no new point may land in them. A
   // guard against rounding only, since nothing there is available anyway.
   std::span<const Rect> covered_rects;
   // When set (a rectangle inside the domain), sampling stops as soon as it
