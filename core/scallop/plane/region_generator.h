@@ -52,7 +52,7 @@ std::vector<RegionKey> LowerRankedNeighbours(RegionKey key);
 // Generates region `key`. `lower_neighbours[n]` must be the generated region
 // LowerRankedNeighbours(key)[n]. The sampler runs on the rectangle grown by
 // kSamplingMarginInD d until the rectangle is covered; the neighbours' points
-// (and spill) within reach of it (2 d for A3, r' for A1 and A2) constrain the
+// (and spill) within reach of it (d for A3, r' for A1 and A2) constrain the
 // new ones and seed their neighbourhoods, and no new point lands in a
 // neighbour's rectangle. The region's random stream is
 // Rng(HashWords({WorldFingerprint(world), i, j})).
