@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "admitted_stream.h"
 #include "follow_prefetch.h"
 #include "scallop/plane/viewport_tracker.h"
 #include "scallop_service.h"
@@ -56,22 +57,17 @@ void SetKey(RegionKey key, v1::RegionKey& message) {
 
 }  // namespace
 
-class FollowReactor final : public grpc::ServerBidiReactor<v1::FollowRequest, v1::FollowResponse> {
+class FollowReactor final
+    : public AdmittedStream<grpc::ServerBidiReactor<v1::FollowRequest, v1::FollowResponse>> {
  public:
   FollowReactor(ScallopService& service, grpc::CallbackServerContext* context)
-      : service_(service),
+      : AdmittedStream(service.in_flight_, "Follow", service.metrics_),
+        service_(service),
         context_(context),
-        log_("Follow", service.metrics_),
         stall_seconds_(service.config_.follow_stall_seconds),
         stall_watch_(std::make_shared<StallWatch>(context->c_call())) {
     stall_watch_->message = StallStatus().error_message();
-    // A Follow call holds one in-flight slot for its whole life: it keeps
-    // per-client state and may ask for work at any moment.
-    if (!service_.in_flight_.TryAdmit()) {
-      FinishWith(ScallopService::Overloaded(service_.in_flight_.limit()));
-      return;
-    }
-    admitted_ = true;
+    if (!Admit()) return;
     StartRead(&request_);
   }
 
@@ -209,17 +205,9 @@ class FollowReactor final : public grpc::ServerBidiReactor<v1::FollowRequest, v1
                                  nullptr);
   }
 
-  void FinishWith(const grpc::Status& status) {
-    log_.Finish(status);
-    if (admitted_) service_.in_flight_.Release();
-    Finish(status);
-  }
-
   ScallopService& service_;
   grpc::CallbackServerContext* context_;
-  RequestLog log_;
   const double stall_seconds_;
-  bool admitted_ = false;
   World world_;
   std::optional<ViewportTracker> tracker_;  // set by the first update
   std::optional<FollowPrefetch> prefetch_;  // set by the first update

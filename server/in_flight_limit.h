@@ -3,8 +3,11 @@
 // of growing queues and deadlines missed by everyone.
 #pragma once
 
+#include <grpcpp/support/status.h>
+
 #include <algorithm>
 #include <atomic>
+#include <string>
 
 namespace scallop::server {
 
@@ -20,6 +23,12 @@ class InFlightLimit {
   }
   void Release() { in_flight_.fetch_sub(1); }
   int limit() const { return limit_; }
+  // The status a refused call gets: it names the setting and asks for backoff.
+  grpc::Status Refusal() const {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+            "server: " + std::to_string(limit_) +
+                " requests already in flight (max_in_flight); retry with backoff"};
+  }
   // Admitted calls now (a refused one may count for an instant: clamped).
   int in_flight() const { return std::min(in_flight_.load(), limit_); }
 

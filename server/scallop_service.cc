@@ -16,12 +16,6 @@ ScallopService::ScallopService(const ServerConfig& config, const WorldRegistry& 
       metrics_(metrics),
       in_flight_(config.max_in_flight) {}
 
-grpc::Status ScallopService::Overloaded(int limit) {
-  return {grpc::StatusCode::RESOURCE_EXHAUSTED,
-          "server: " + std::to_string(limit) +
-              " requests already in flight (max_in_flight); retry with backoff"};
-}
-
 grpc::ServerUnaryReactor* ScallopService::RunUnary(grpc::CallbackServerContext* context,
                                                    const char* method, UnaryWork work) {
   return RunUnaryInlineFirst(
@@ -34,7 +28,7 @@ grpc::ServerUnaryReactor* ScallopService::RunUnaryInlineFirst(grpc::CallbackServ
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
   auto log = std::make_shared<RequestLog>(method, metrics_);
   if (!in_flight_.TryAdmit()) {
-    const grpc::Status status = Overloaded(in_flight_.limit());
+    const grpc::Status status = in_flight_.Refusal();
     log->Finish(status);
     reactor->Finish(status);
     return reactor;

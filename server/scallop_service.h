@@ -74,7 +74,6 @@ class ScallopService final : public v1::Scallop::CallbackService {
   grpc::ServerUnaryReactor* RunUnaryInlineFirst(grpc::CallbackServerContext* context,
                                                 const char* method, InlineWork quick,
                                                 UnaryWork work);
-  static grpc::Status Overloaded(int limit);
 
   // GetPoints' answer; with may_block false, nullopt when the rectangle's
   // regions are not all cached (nothing is generated or waited on then).

@@ -4,6 +4,7 @@
 // or expired call stops the work at the next chunk.
 #include <boost/asio/post.hpp>
 
+#include "admitted_stream.h"
 #include "query_limits.h"
 #include "scallop/plane/region_layout.h"
 #include "scallop_service.h"
@@ -12,16 +13,14 @@
 
 namespace scallop::server {
 
-class StreamPointsReactor final : public grpc::ServerWriteReactor<v1::PointsChunk> {
+class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor<v1::PointsChunk>> {
  public:
   StreamPointsReactor(ScallopService& service, grpc::CallbackServerContext* context,
                       const v1::StreamPointsRequest& request)
-      : service_(service), context_(context), log_("StreamPoints", service.metrics_) {
-    if (!service_.in_flight_.TryAdmit()) {
-      FinishWith(ScallopService::Overloaded(service_.in_flight_.limit()));
-      return;
-    }
-    admitted_ = true;
+      : AdmittedStream(service.in_flight_, "StreamPoints", service.metrics_),
+        service_(service),
+        context_(context) {
+    if (!Admit()) return;
     if (grpc::Status status = Prepare(request); !status.ok()) {
       FinishWith(status);
       return;
@@ -92,16 +91,8 @@ class StreamPointsReactor final : public grpc::ServerWriteReactor<v1::PointsChun
     }
   }
 
-  void FinishWith(const grpc::Status& status) {
-    log_.Finish(status);
-    if (admitted_) service_.in_flight_.Release();
-    Finish(status);
-  }
-
   ScallopService& service_;
   grpc::CallbackServerContext* context_;
-  RequestLog log_;
-  bool admitted_ = false;
   World world_;
   Rect rect_;
   RegionKey low_, high_, next_;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <thread>
 
+#include "follow_client.h"
 #include "scallopd_process.h"
 #include "world_messages.h"
 
@@ -203,6 +204,26 @@ TEST(E2eLoadSheddingTest, RequestsBeyondMaxInFlightGetResourceExhausted) {
   const grpc::Status shed = client.GetPoints(Request(World{}, {0, 0, 5, 5}), response);
   EXPECT_EQ(shed.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_NE(shed.error_message().find("max_in_flight"), std::string::npos);
+  // Streams are shed the same way, and give back no slot they never had.
+  v1::StreamPointsRequest second = slow;
+  *second.mutable_rect() = RectToMessage({0, 0, 5, 5});
+  int chunks = 0;
+  const grpc::Status shed_stream = client.StreamPoints(second, [&](const v1::PointsChunk&) {
+    ++chunks;
+    return true;
+  });
+  EXPECT_EQ(shed_stream.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(shed_stream.error_message().find("max_in_flight"), std::string::npos);
+  EXPECT_EQ(chunks, 0);
+  {
+    client::FollowSession follow(client);
+    v1::FollowRequest update;
+    *update.mutable_world() = WorldToMessage(World{.seed = 2});
+    *update.mutable_viewport() = RectToMessage({0, 0, 5, 5});
+    const grpc::Status shed_follow = follow.Update(update, [](const v1::FollowResponse&) {});
+    EXPECT_EQ(shed_follow.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+    EXPECT_NE(shed_follow.error_message().find("max_in_flight"), std::string::npos);
+  }
   release = true;
   holder.join();
   // The slot is free again once the stream has ended.
