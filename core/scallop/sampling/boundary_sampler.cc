@@ -82,7 +82,9 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
   if (NeedsSeedPoint(problem, spacing)) add_point(SeedPoint(problem, rng));
 
   AvailableBoundary boundary;
-  std::vector<Vec2> nearby;  // neighbours of the candidate, as images near it
+  // Neighbours of the candidate, as images near it: nearby[0, nearby_count).
+  std::vector<Vec2> nearby;
+  size_t nearby_count = 0;
   while (!candidates.empty() && !(stop && pending_near_stop == 0)) {
     // Uniform choice among candidates, as the paper prescribes.
     const size_t pick = rng.Below(candidates.size());
@@ -94,20 +96,19 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
 
     boundary.Reset();
     if (!domain.torus) ClipToRectangle(domain.rect, p, spacing, boundary);
-    nearby.clear();
-    grid.ForEachNear(p, 2 * spacing, [&](int32_t other, Vec2 q) {
+    nearby_count = grid.GatherNear(p, 2 * spacing, 4 * spacing_squared, index, nearby);
+    for (size_t n = 0; n < nearby_count; ++n) {
+      const Vec2 q = nearby[n];
       // Once nothing is left the rest of the neighbours cannot matter.
-      if (other == index || boundary.empty()) return;
+      if (boundary.empty()) break;
       const Vec2 offset = q - p;
       const double distance_squared = SquaredLength(offset);
-      if (distance_squared >= 4 * spacing_squared) return;
-      nearby.push_back(q);
       // q's disk of radius s covers the arc of p's circle centred on the
       // direction o = q - p with ends along o -+ k o', k = sqrt(4 s^2 / D^2 - 1).
       const double k = std::sqrt(4 * spacing_squared / distance_squared - 1.0);
       const Vec2 left{-offset.y, offset.x};
       boundary.SubtractArc(offset - k * left, offset + k * left);
-    });
+    }
     boundary.Finish();
 
     int rejected = 0;  // in a row
@@ -117,7 +118,7 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
       // The margin in `spacing` makes these checks pass; they stay because the
       // contract is promised on the returned doubles, not on an argument.
       bool valid = (domain.torus || domain.rect.Contains(x)) && !InCoveredRect(problem, x);
-      for (size_t k = 0; valid && k < nearby.size(); ++k) {
+      for (size_t k = 0; valid && k < nearby_count; ++k) {
         valid = SquaredDistance(grid.NearestImage(x, nearby[k]), x) >= d_squared;
       }
       valid = valid && SquaredDistance(grid.NearestImage(x, p), x) >= d_squared;
@@ -131,7 +132,8 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
       }
       rejected = 0;
       add_point(x);
-      nearby.push_back(x);
+      if (nearby_count == nearby.size()) nearby.push_back(x);
+      nearby[nearby_count++] = x;
       boundary.Subtract(angle, kPlacedHalfWidth);
     }
   }
