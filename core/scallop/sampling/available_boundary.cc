@@ -1,8 +1,9 @@
 // Angular range arithmetic for A3's available boundary.
 #include "scallop/sampling/available_boundary.h"
-#include "scallop/base/deterministic_math.h"
 
 #include <cmath>
+
+#include "scallop/base/deterministic_math.h"
 
 namespace scallop {
 namespace {
@@ -14,8 +15,7 @@ void AvailableBoundary::Reset() {
   ranges_.push_back({0.0, kFullTurnKey, {1, 0}, {1, 0}});
 }
 
-void AvailableBoundary::SubtractArc(Vec2 from, Vec2 to) {
-  const double begin = PseudoAngle(from), end = PseudoAngle(to);
+void AvailableBoundary::SubtractArc(double begin, double end, Vec2 from, Vec2 to) {
   if (begin <= end) {
     SubtractKeys(begin, end, from, to);
   } else {

@@ -8,6 +8,8 @@
 // drawn uniformly and each placed point's arc is removed.
 #pragma once
 
+#include <bit>
+#include <cstdint>
 #include <vector>
 
 #include "scallop/geometry/vec2.h"
@@ -22,6 +24,27 @@ inline constexpr double kTwoPi = 6.283185307179586476925286766559;
 inline double PseudoAngle(Vec2 v) {
   if (v.y >= 0) return v.x >= 0 ? v.y / (v.x + v.y) : 1 - v.x / (v.y - v.x);
   return v.x < 0 ? 2 - v.y / (-v.x - v.y) : 3 + v.x / (v.x - v.y);
+}
+
+// PseudoAngle(v) without branches, for loops over many directions whose
+// quadrants a branch predictor cannot guess: the same value, except that a
+// -0 comes out +0 (keys are only compared, and -0 == +0). In the lower half
+// the upper half's forms apply to (u, w) = -(x, y); then with s = u when
+// forward (u >= 0 there, i.e. x >= 0 above and x < 0 below) and s = -u when
+// not: numerator w or s, denominator w + s, base 0 or 1 (plus 2 below).
+// Negation, a + (-b) = a - b, a + b = b + a and (-a) / b = -(a / b) are
+// exact, so each quadrant gets the bits of PseudoAngle's expression.
+inline double PseudoAngleWithoutBranches(Vec2 v) {
+  const uint64_t sign = uint64_t{1} << 63;
+  const uint64_t lower = v.y >= 0 ? 0 : ~uint64_t{0};
+  const uint64_t backward = (v.x >= 0 ? 0 : ~uint64_t{0}) ^ lower;
+  const uint64_t u = std::bit_cast<uint64_t>(v.x) ^ (lower & sign);
+  const uint64_t w = std::bit_cast<uint64_t>(v.y) ^ (lower & sign);
+  const uint64_t s = u ^ (backward & sign);
+  const double numerator = std::bit_cast<double>((w & ~backward) | (s & backward));
+  const double denominator = std::bit_cast<double>(w) + std::bit_cast<double>(s);
+  const double base = static_cast<double>((lower & 2) | (backward & 1));
+  return base + numerator / denominator;
 }
 
 class AvailableBoundary {
@@ -39,7 +62,11 @@ class AvailableBoundary {
 
   // Pseudo-angle phase: removes the arc that runs counterclockwise from
   // direction `from` to direction `to` (both non-zero). O(ranges).
-  void SubtractArc(Vec2 from, Vec2 to);
+  void SubtractArc(Vec2 from, Vec2 to) {
+    SubtractArc(PseudoAngle(from), PseudoAngle(to), from, to);
+  }
+  // The same, given PseudoAngle(from) and PseudoAngle(to) (or values equal to them).
+  void SubtractArc(double from_key, double to_key, Vec2 from, Vec2 to);
   // Removes everything.
   void Clear() { ranges_.clear(); }
 

@@ -36,6 +36,21 @@ void ClipToRectangle(const Rect& rect, Vec2 centre, double radius, AvailableBoun
   }
 }
 
+// The arc of the candidate's circle (radius s) that the disk of radius s
+// about a neighbour at `offset` (|offset| < 2 s) covers.
+struct Arc {
+  Vec2 from, to;
+  double from_key, to_key;  // their pseudo-angles
+};
+Arc CoveredArc(Vec2 offset, double spacing_squared) {
+  // Centred on the direction o = offset, with ends along o -+ k o',
+  // k = sqrt(4 s^2 / D^2 - 1).
+  const double k = std::sqrt(4 * spacing_squared / SquaredLength(offset) - 1.0);
+  const Vec2 left{-offset.y, offset.x};
+  const Vec2 from = offset - k * left, to = offset + k * left;
+  return {from, to, PseudoAngleWithoutBranches(from), PseudoAngleWithoutBranches(to)};
+}
+
 }  // namespace
 
 std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
@@ -85,6 +100,7 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
   // Neighbours of the candidate, as images near it: nearby[0, nearby_count).
   std::vector<Vec2> nearby;
   size_t nearby_count = 0;
+  std::vector<Arc> arcs;  // arcs[k]: the arc nearby[k] covers
   while (!candidates.empty() && !(stop && pending_near_stop == 0)) {
     // Uniform choice among candidates, as the paper prescribes.
     const size_t pick = rng.Below(candidates.size());
@@ -97,17 +113,14 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
     boundary.Reset();
     if (!domain.torus) ClipToRectangle(domain.rect, p, spacing, boundary);
     nearby_count = grid.GatherNear(p, 2 * spacing, 4 * spacing_squared, index, nearby);
-    for (size_t n = 0; n < nearby_count; ++n) {
-      const Vec2 q = nearby[n];
+    // The arcs first, the subtractions after: the arcs' divisions and square
+    // roots then overlap instead of waiting behind the subtractions' branches.
+    if (arcs.size() < nearby_count) arcs.resize(nearby_count);
+    for (size_t n = 0; n < nearby_count; ++n) arcs[n] = CoveredArc(nearby[n] - p, spacing_squared);
+    for (size_t n = 0; n < nearby_count && !boundary.empty(); ++n) {
       // Once nothing is left the rest of the neighbours cannot matter.
-      if (boundary.empty()) break;
-      const Vec2 offset = q - p;
-      const double distance_squared = SquaredLength(offset);
-      // q's disk of radius s covers the arc of p's circle centred on the
-      // direction o = q - p with ends along o -+ k o', k = sqrt(4 s^2 / D^2 - 1).
-      const double k = std::sqrt(4 * spacing_squared / distance_squared - 1.0);
-      const Vec2 left{-offset.y, offset.x};
-      boundary.SubtractArc(offset - k * left, offset + k * left);
+      const Arc& arc = arcs[n];
+      boundary.SubtractArc(arc.from_key, arc.to_key, arc.from, arc.to);
     }
     boundary.Finish();
 
