@@ -18,6 +18,7 @@
 namespace scallop {
 
 inline constexpr double kTwoPi = 6.283185307179586476925286766559;
+inline constexpr double kFullTurnKey = 4.0;  // the pseudo-angle of a whole turn
 
 // The "diamond angle" of a non-zero direction: 0 along +x, 1 along +y, 2
 // along -x, 3 along -y, in [0, 4), increasing counterclockwise.
@@ -89,5 +90,48 @@ class AvailableBoundary {
   void SubtractKeys(double begin, double end, Vec2 begin_direction, Vec2 end_direction);
   std::vector<Range> ranges_;
 };
+
+// Inline: they run for every neighbour of every candidate, and a call's
+// overhead (four directions passed, registers saved) was a third of their cost.
+inline void AvailableBoundary::SubtractArc(double begin, double end, Vec2 from, Vec2 to) {
+  if (begin <= end) {
+    SubtractKeys(begin, end, from, to);
+  } else {
+    SubtractKeys(begin, kFullTurnKey, from, {1, 0});
+    SubtractKeys(0.0, end, {1, 0}, to);
+  }
+}
+
+inline void AvailableBoundary::SubtractKeys(double begin, double end, Vec2 begin_direction,
+                                            Vec2 end_direction) {
+  // In place: most cuts touch one range, so copying every range would
+  // dominate. Ranges are sorted and disjoint.
+  const size_t count = ranges_.size();
+  size_t first = 0;
+  while (first < count && ranges_[first].end <= begin) ++first;
+  if (first == count || ranges_[first].begin >= end) return;
+  Range& cut = ranges_[first];
+  if (cut.begin < begin && cut.end > end) {  // the cut falls inside one range: split it
+    const Range right{end, cut.end, end_direction, cut.end_direction};
+    cut.end = begin;
+    cut.end_direction = begin_direction;
+    ranges_.insert(ranges_.begin() + static_cast<std::ptrdiff_t>(first) + 1, right);
+    return;
+  }
+  size_t erase_from = first;
+  if (cut.begin < begin) {  // keep the head of the first range
+    cut.end = begin;
+    cut.end_direction = begin_direction;
+    ++erase_from;
+  }
+  size_t last = erase_from;  // ranges wholly inside the cut end before `last`
+  while (last < count && ranges_[last].end <= end) ++last;
+  if (last < count && ranges_[last].begin < end) {  // trim the tail range
+    ranges_[last].begin = end;
+    ranges_[last].begin_direction = end_direction;
+  }
+  ranges_.erase(ranges_.begin() + static_cast<std::ptrdiff_t>(erase_from),
+                ranges_.begin() + static_cast<std::ptrdiff_t>(last));
+}
 
 }  // namespace scallop
