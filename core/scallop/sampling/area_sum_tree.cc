@@ -1,6 +1,9 @@
 // AreaSumTree implementation.
 #include "scallop/sampling/area_sum_tree.h"
 
+#include <bit>
+#include <cstdint>
+
 namespace scallop {
 
 void AreaSumTree::Set(size_t index, double weight) {
@@ -14,6 +17,9 @@ void AreaSumTree::Set(size_t index, double weight) {
     leaves_ = leaves;
   }
   size_t node = leaves_ + index;
+  // The sums are a pure function of the leaves, so an unchanged leaf (most cuts of a neighbour
+  // miss it) leaves every node as it is; comparing bits also tells -0 from +0.
+  if (std::bit_cast<uint64_t>(nodes_[node]) == std::bit_cast<uint64_t>(weight)) return;
   nodes_[node] = weight;
   for (node /= 2; node >= 1; node /= 2) nodes_[node] = nodes_[2 * node] + nodes_[2 * node + 1];
 }

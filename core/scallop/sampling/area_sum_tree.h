@@ -12,7 +12,8 @@ namespace scallop {
 
 class AreaSumTree {
  public:
-  // Sets weight i (>= 0), growing the tree as needed. O(log N) amortised.
+  // Sets weight i (>= 0), growing the tree as needed. O(log N) amortised; O(1) when weight i
+  // already has these bits.
   void Set(size_t index, double weight);
 
   double Total() const { return nodes_.empty() ? 0.0 : nodes_[1]; }
