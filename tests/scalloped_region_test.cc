@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <numbers>
 #include <vector>
@@ -222,6 +223,65 @@ TEST(ScallopedRegionTest, OracleComparisonCatchesASkippedOperation) {
   }
   EXPECT_GT(meaningful, 20);
   EXPECT_EQ(caught, meaningful);
+}
+
+// Whether every sector's cached ends equal, bit for bit, a fresh SectorEnds::Of at its cached
+// directions (Sample and the operations use the cache instead of recomputing).
+bool CachedEndsAreExact(const ScallopedRegion& region) {
+  for (size_t i = 0; i < region.sectors().size(); ++i) {
+    const SectorEnds& cached = region.sector_ends(i);
+    const SectorEnds fresh =
+        SectorEnds::Of(region.sectors()[i], cached.begin_direction, cached.end_direction);
+    if (std::memcmp(&cached.near_begin, &fresh.near_begin, sizeof(double)) != 0 ||
+        std::memcmp(&cached.near_end, &fresh.near_end, sizeof(double)) != 0 ||
+        std::memcmp(&cached.far_begin, &fresh.far_begin, sizeof(double)) != 0 ||
+        std::memcmp(&cached.far_end, &fresh.far_end, sizeof(double)) != 0) {
+      return false;
+    }
+  }
+  return true;
+}
+
+TEST(ScallopedRegionTest, CachedSectorEndsMatchRecomputation) {
+  int sectors_checked = 0;
+  for (uint64_t seed = 1; seed <= 1500; ++seed) {
+    Rng rng(seed);
+    const Oracle oracle = RandomOracle(rng);
+    ScallopedRegion region = ScallopedRegion::Annulus(oracle.apex, oracle.inner, oracle.outer);
+    // After every operation, not only the last: each one makes and keeps sectors its own way.
+    for (const Operation& operation : oracle.operations) {
+      Oracle step = oracle;
+      step.operations = {operation};
+      step.ApplyTo(region);
+      ASSERT_TRUE(CachedEndsAreExact(region)) << "seed " << seed;
+      sectors_checked += static_cast<int>(region.sectors().size());
+    }
+  }
+  EXPECT_GT(sectors_checked, 10000);
+}
+
+// Planted fault: a sector whose curve moved by a hair after its ends were cached is caught.
+TEST(ScallopedRegionTest, CachedEndsCheckCatchesAMovedCurve) {
+  ScallopedRegion region = ScallopedRegion::Annulus({3.0, -2.0}, 1.0, 2.0);
+  region.SubtractDisk({3.0 + 1.7, -2.0 + 0.4}, 1.0);
+  ASSERT_TRUE(CachedEndsAreExact(region));
+  int caught = 0;
+  int planted = 0;
+  for (size_t i = 0; i < region.sectors().size(); ++i) {
+    for (const bool far : {false, true}) {
+      ScallopedRegion copy = region;
+      auto& sector = const_cast<ScallopedSector&>(copy.sectors()[i]);
+      RadialCurve& curve = far ? sector.far : sector.near;
+      // Circles about the apex have no remainder to get wrong; move the others.
+      if (curve.centre() == Vec2{0.0, 0.0}) continue;
+      const Vec2 moved = curve.centre() + Vec2{1e-9, -1e-9};
+      curve = RadialCurve::Arc(moved, curve.radius(), curve.sign());
+      ++planted;
+      caught += !CachedEndsAreExact(copy);
+    }
+  }
+  EXPECT_GT(planted, 0);
+  EXPECT_EQ(caught, planted);
 }
 
 // A more accurate area check on fewer cases: Monte Carlo with many probes.

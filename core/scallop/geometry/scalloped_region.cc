@@ -265,12 +265,7 @@ class RemainderMemo {
   explicit RemainderMemo(const CriticalAngles& critical) : critical_(critical) {}
 
   double At(const RadialCurve* curve, int index) {
-    int slot = 0;
-    while (slot < curve_count_ && curves_[slot] != curve) ++slot;
-    if (slot == curve_count_) {
-      curves_[curve_count_++] = curve;
-      known_[slot] = 0;
-    }
+    const int slot = SlotOf(curve);
     const unsigned bit = 1u << index;
     if (!(known_[slot] & bit)) {
       values_[slot][index] = curve->HalfSquareIntegralRemainder(critical_.directions[index]);
@@ -279,7 +274,25 @@ class RemainderMemo {
     return values_[slot][index];
   }
 
+  // Records a value the caller computed earlier by the same call (the sector's own ends), so the
+  // memo returns the same bits without recomputing them.
+  void Know(const RadialCurve* curve, int index, double value) {
+    const int slot = SlotOf(curve);
+    values_[slot][index] = value;
+    known_[slot] |= 1u << index;
+  }
+
  private:
+  int SlotOf(const RadialCurve* curve) {
+    int slot = 0;
+    while (slot < curve_count_ && curves_[slot] != curve) ++slot;
+    if (slot == curve_count_) {
+      curves_[curve_count_++] = curve;
+      known_[slot] = 0;
+    }
+    return slot;
+  }
+
   const CriticalAngles& critical_;
   const RadialCurve* curves_[4];
   unsigned known_[4];
@@ -306,10 +319,10 @@ void ScallopedRegion::Reset(Vec2 apex, double inner, double outer) {
   const Vec2 minus_pi = UnitAt(-kPi);
   const Vec2 zero = UnitAt(0.0);
   const Vec2 plus_pi = UnitAt(kPi);
-  sector_cache_.push_back(
-      {AreaBetween(near, far, -kPi, minus_pi, 0.0, zero), minus_pi, zero, inner, outer});
-  sector_cache_.push_back(
-      {AreaBetween(near, far, 0.0, zero, kPi, plus_pi), zero, plus_pi, inner, outer});
+  sector_cache_.push_back({AreaBetween(near, far, -kPi, minus_pi, 0.0, zero),
+                           SectorEnds::Of(sectors_[0], minus_pi, zero), inner, outer});
+  sector_cache_.push_back({AreaBetween(near, far, 0.0, zero, kPi, plus_pi),
+                           SectorEnds::Of(sectors_[1], zero, plus_pi), inner, outer});
   area_ = sector_cache_[0].area + sector_cache_[1].area;
   outer_bound_ = outer;
   inner_bound_ = inner;
@@ -332,8 +345,8 @@ void ScallopedRegion::Apply(Operation& operation) {
   for (size_t index = sectors_.size(); index-- > 0;) {
     const ScallopedSector& sector = sectors_[index];
     const SectorCache& cache = sector_cache_[index];
-    const Vec2 begin_direction = cache.begin_direction;
-    const Vec2 end_direction = cache.end_direction;
+    const Vec2 begin_direction = cache.ends.begin_direction;
+    const Vec2 end_direction = cache.ends.end_direction;
     if (!operation.MayTouch(begin_direction, end_direction, cache.min_near, cache.max_far)) {
       if (!operation.KeepsUntouched()) {
         sectors_.erase(sectors_.begin() + static_cast<std::ptrdiff_t>(index));
@@ -427,14 +440,25 @@ void ScallopedRegion::Apply(Operation& operation) {
     }
     // Areas first, so the vectors are resized once and written in place.
     double areas[14];
+    double run_ends[14][4];  // each run's SectorEnds remainders: near_begin, near_end, far_...
     int kept = 0;
     RemainderMemo remainders(critical);
+    // The sector's own curves at its own ends: computed when it was made.
+    const int last = critical.count - 1;
+    remainders.Know(&sector.near, 0, cache.ends.near_begin);
+    remainders.Know(&sector.near, last, cache.ends.near_end);
+    remainders.Know(&sector.far, 0, cache.ends.far_begin);
+    remainders.Know(&sector.far, last, cache.ends.far_end);
     for (int r = 0; r < run_count; ++r) {
       const PieceRun& run = runs[r];
+      double* ends = run_ends[r];
+      ends[0] = remainders.At(run.lower, run.first);
+      ends[1] = remainders.At(run.lower, run.last);
+      ends[2] = remainders.At(run.upper, run.first);
+      ends[3] = remainders.At(run.upper, run.last);
       areas[r] = (run.upper->LinearCoefficient() - run.lower->LinearCoefficient()) *
                      (critical.angles[run.last] - critical.angles[run.first]) +
-                 ((remainders.At(run.upper, run.last) - remainders.At(run.upper, run.first)) -
-                  (remainders.At(run.lower, run.last) - remainders.At(run.lower, run.first)));
+                 ((ends[3] - ends[2]) - (ends[1] - ends[0]));
       if (!(areas[r] > negligible_area_)) {
         // Small: keep it only if it is a real gap, wider than rounding noise.
         const double middle = 0.5 * (critical.angles[run.first] + critical.angles[run.last]);
@@ -474,8 +498,12 @@ void ScallopedRegion::Apply(Operation& operation) {
       piece.far = *upper;
       SectorCache& piece_cache = sector_cache_[out];
       piece_cache.area = areas[r];
-      piece_cache.begin_direction = critical.directions[run.first];
-      piece_cache.end_direction = critical.directions[run.last];
+      piece_cache.ends = {critical.directions[run.first],
+                          critical.directions[run.last],
+                          run_ends[r][0],
+                          run_ends[r][1],
+                          run_ends[r][2],
+                          run_ends[r][3]};
       piece_cache.min_near =
           lower == &old.near ? old_cache.min_near : std::max(inner_bound_, lower->MinDistance());
       piece_cache.max_far =
@@ -539,8 +567,22 @@ Vec2 ScallopedRegion::Sample(double u0, double u1, double u2) const {
     }
     remaining -= sector_cache_[i].area;
   }
-  return apex_ + sectors_[chosen].Sample(u1, u2, sector_cache_[chosen].begin_direction,
-                                         sector_cache_[chosen].end_direction);
+  return apex_ + sectors_[chosen].Sample(u1, u2, sector_cache_[chosen].ends);
+}
+
+void ScallopedRegion::Prefetch() const {
+  // Every operation scans the whole cache array; the sectors are read where an operation reaches
+  // them. A few lines of each cover the usual handful of sectors.
+  constexpr size_t kLine = 64;
+  constexpr size_t kMaxLines = 8;
+  const auto request = [](const void* data, size_t bytes) {
+    const char* first = static_cast<const char*>(data);
+    for (size_t offset = 0; offset < std::min(bytes, kLine * kMaxLines); offset += kLine) {
+      __builtin_prefetch(first + offset);
+    }
+  };
+  request(sector_cache_.data(), sector_cache_.size() * sizeof(SectorCache));
+  request(sectors_.data(), sectors_.size() * sizeof(ScallopedSector));
 }
 
 bool ScallopedRegion::Contains(Vec2 p) const {

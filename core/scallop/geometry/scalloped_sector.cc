@@ -17,15 +17,29 @@ double ScallopedSector::AngleAtArea(double area) const {
   return AngleAtArea(area, UnitAt(angle_begin), UnitAt(angle_end));
 }
 
+SectorEnds SectorEnds::Of(const ScallopedSector& sector, Vec2 begin_direction, Vec2 end_direction) {
+  SectorEnds ends;
+  ends.begin_direction = begin_direction;
+  ends.end_direction = end_direction;
+  ends.near_begin = sector.near.HalfSquareIntegralRemainder(begin_direction);
+  ends.near_end = sector.near.HalfSquareIntegralRemainder(end_direction);
+  ends.far_begin = sector.far.HalfSquareIntegralRemainder(begin_direction);
+  ends.far_end = sector.far.HalfSquareIntegralRemainder(end_direction);
+  return ends;
+}
+
 double ScallopedSector::AngleAtArea(double area, Vec2 begin, Vec2 end) const {
+  return AngleAtArea(area, SectorEnds::Of(*this, begin, end));
+}
+
+double ScallopedSector::AngleAtArea(double area, const SectorEnds& ends) const {
   // A(t) = slope_base * (t - angle_begin) + (R_far(t) - far_base) - (R_near(t) - near_base), the
   // split antiderivative of RadialCurve, so each iteration costs one sincos and up to two atan.
   const double linear = far.LinearCoefficient() - near.LinearCoefficient();
-  const double far_base = far.HalfSquareIntegralRemainder(begin);
-  const double near_base = near.HalfSquareIntegralRemainder(begin);
-  const double total =
-      linear * (angle_end - angle_begin) + ((far.HalfSquareIntegralRemainder(end) - far_base) -
-                                            (near.HalfSquareIntegralRemainder(end) - near_base));
+  const double far_base = ends.far_begin;
+  const double near_base = ends.near_begin;
+  const double total = linear * (angle_end - angle_begin) +
+                       ((ends.far_end - far_base) - (ends.near_end - near_base));
   if (!(area > 0.0)) return angle_begin;
   if (area >= total) return angle_end;
   double low = angle_begin;
@@ -63,9 +77,15 @@ Vec2 ScallopedSector::Sample(double u1, double u2) const {
 }
 
 Vec2 ScallopedSector::Sample(double u1, double u2, Vec2 begin_direction, Vec2 end_direction) const {
+  return Sample(u1, u2, SectorEnds::Of(*this, begin_direction, end_direction));
+}
+
+Vec2 ScallopedSector::Sample(double u1, double u2, const SectorEnds& ends) const {
+  // AreaBetween's expression, with its remainders taken from `ends`.
   const double total =
-      AreaBetween(near, far, angle_begin, begin_direction, angle_end, end_direction);
-  const double angle = AngleAtArea(u2 * total, begin_direction, end_direction);
+      (far.LinearCoefficient() - near.LinearCoefficient()) * (angle_end - angle_begin) +
+      ((ends.far_end - ends.far_begin) - (ends.near_end - ends.near_begin));
+  const double angle = AngleAtArea(u2 * total, ends);
   const Vec2 direction = UnitAt(angle);
   const double g = near.DistanceAlong(direction);
   const double h = far.DistanceAlong(direction);

@@ -8,6 +8,25 @@
 
 namespace scallop {
 
+struct ScallopedSector;
+
+// What a sector's area function needs at its two ends, computed once (a region caches it per
+// sector): the unit directions of the end angles and RadialCurve::HalfSquareIntegralRemainder of
+// the near and far curves there. SectorEnds::Of computes it; a holder may instead keep values
+// computed earlier by the very same calls, which are pure, so results stay bit-identical.
+struct SectorEnds {
+  Vec2 begin_direction;
+  Vec2 end_direction;
+  double near_begin = 0.0;  // near.HalfSquareIntegralRemainder(begin_direction)
+  double near_end = 0.0;
+  double far_begin = 0.0;
+  double far_end = 0.0;
+
+  // Up to four remainders (two atan). REQUIRES: directions = UnitAt of the sector's end angles
+  // (to rounding; the sector's area is then defined by these directions).
+  static SectorEnds Of(const ScallopedSector& sector, Vec2 begin_direction, Vec2 end_direction);
+};
+
 // Invariants (REQUIRES for every method): angle_begin < angle_end, both in [-pi, pi];
 // 0 <= near(t) <= far(t) on the range; near and far do not cross inside it; each curve is defined
 // on the whole range (arcs: rays meet the circle; lines: rho > 0). All points are apex-relative.
@@ -32,12 +51,18 @@ struct ScallopedSector {
   double AngleAtArea(double area) const;
   // As AngleAtArea, given UnitAt(angle_begin) and UnitAt(angle_end) (to rounding), saving a sincos.
   double AngleAtArea(double area, Vec2 begin_direction, Vec2 end_direction) const;
+  // As AngleAtArea, given the ends' data (bit-identical to the overload above with the same
+  // directions), saving the four remainders at the ends.
+  double AngleAtArea(double area, const SectorEnds& ends) const;
 
   // A uniformly distributed point of the sector (apex-relative) from u1, u2 in [0, 1):
   // theta = A^-1(u2 A), distance = sqrt(g^2 + u1 (h^2 - g^2)). Cost: one AngleAtArea.
   Vec2 Sample(double u1, double u2) const;
   // As Sample, given the unit directions of the end angles (as a region caches them).
   Vec2 Sample(double u1, double u2, Vec2 begin_direction, Vec2 end_direction) const;
+  // As Sample, given the ends' data (bit-identical to the overload above with the same
+  // directions): no remainder evaluations outside AngleAtArea's iterations.
+  Vec2 Sample(double u1, double u2, const SectorEnds& ends) const;
 
   // True when `relative` lies in the closed sector. Cost: one atan2, two DistanceAlong.
   bool Contains(Vec2 relative) const;

@@ -120,22 +120,22 @@ class ScallopedSampler {
     region.Reset(x, spacing_, outer_radius_);
     if (!problem_.domain.torus) ClipToDomain(region);
     // Earlier points own what lies within r' of them; x's s-disk leaves their
-    // neighbourhoods. Images are taken near x, then moved to each point's side.
+    // neighbourhoods.
     nearby_.clear();
+    in_reach_.clear();
+    const double reach = outer_radius_ + spacing_;
     grid_.ForEachNear(x, 2 * outer_radius_, [&](int32_t other, Vec2 q) {
       if (other == index) return;
       const double distance_squared = SquaredDistance(q, x);
       if (distance_squared < 4 * outer_radius_ * outer_radius_) {
         nearby_.push_back({distance_squared, other, q});
       }
-      ScallopedRegion& theirs = neighbourhoods_[static_cast<size_t>(other)];
-      const double reach = outer_radius_ + spacing_;
-      if (!theirs.empty() && distance_squared < reach * reach) {
-        const Vec2 x_near_them = x + (points_[static_cast<size_t>(other)] - q);
-        theirs.SubtractDisk(x_near_them, spacing_);
-        SetNeighbourhoodArea(other);
+      if (distance_squared < reach * reach) {
+        in_reach_.push_back({distance_squared, other, q});
+        __builtin_prefetch(&neighbourhoods_[static_cast<size_t>(other)]);
       }
     });
+    CutNeighbourhoods(x);
     // Nearest first: their disks cover the most of the annulus, so the
     // region shrinks (or empties) early and most later disks miss it cheaply.
     // Ties are broken by index so the order is a pure function of the points.
@@ -151,6 +151,22 @@ class ScallopedSampler {
     open_near_stop_flags_.push_back(0);
     if (choice_ == CandidateChoice::kUniform) candidates_.push_back(index);
     SetNeighbourhoodArea(index);
+  }
+
+  // Cuts x's s-disk from the neighbourhoods of the points in in_reach_, in the grid's order. At a
+  // million points each neighbourhood is a few cache misses, so all are requested before any is
+  // cut (results do not depend on it).
+  void CutNeighbourhoods(Vec2 x) {
+    for (const Nearby& n : in_reach_) neighbourhoods_[static_cast<size_t>(n.index)].Prefetch();
+    for (const Nearby& n : in_reach_) {
+      ScallopedRegion& theirs = neighbourhoods_[static_cast<size_t>(n.index)];
+      if (theirs.empty()) continue;
+      // Images are taken near x, then moved to the point's side. On a rectangle the grid's
+      // position is the point itself (same bits), so its entry in points_ need not be loaded.
+      const Vec2 point = problem_.domain.torus ? points_[static_cast<size_t>(n.index)] : n.position;
+      theirs.SubtractDisk(x + (point - n.position), spacing_);
+      SetNeighbourhoodArea(n.index);
+    }
   }
 
   // A point with an empty neighbourhood from the start. Added before any
@@ -214,6 +230,7 @@ class ScallopedSampler {
   size_t fixed_count_ = 0;
   std::vector<ScallopedRegion> neighbourhoods_;
   std::vector<Nearby> nearby_;  // scratch of AddPoint
+  std::vector<Nearby> in_reach_;    // scratch of AddPoint: points whose neighbourhood x may cut
   ScallopedRegion scratch_region_;  // scratch of AddPoint
   AreaSumTree areas_;             // A1
   std::vector<int32_t> candidates_;  // A2
