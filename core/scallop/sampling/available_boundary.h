@@ -8,7 +8,6 @@
 // drawn uniformly and each placed point's arc is removed.
 #pragma once
 
-#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -27,24 +26,35 @@ inline double PseudoAngle(Vec2 v) {
   return v.x < 0 ? 2 - v.y / (-v.x - v.y) : 3 + v.x / (v.x - v.y);
 }
 
-// PseudoAngle(v) without branches, for loops over many directions whose
-// quadrants a branch predictor cannot guess: the same value, except that a
-// -0 comes out +0 (keys are only compared, and -0 == +0). In the lower half
-// the upper half's forms apply to (u, w) = -(x, y); then with s = u when
-// forward (u >= 0 there, i.e. x >= 0 above and x < 0 below) and s = -u when
-// not: numerator w or s, denominator w + s, base 0 or 1 (plus 2 below).
-// Negation, a + (-b) = a - b, a + b = b + a and (-a) / b = -(a / b) are
-// exact, so each quadrant gets the bits of PseudoAngle's expression.
-inline double PseudoAngleWithoutBranches(Vec2 v) {
-  const uint64_t sign = uint64_t{1} << 63;
-  const uint64_t lower = v.y >= 0 ? 0 : ~uint64_t{0};
-  const uint64_t backward = (v.x >= 0 ? 0 : ~uint64_t{0}) ^ lower;
-  const uint64_t u = std::bit_cast<uint64_t>(v.x) ^ (lower & sign);
-  const uint64_t w = std::bit_cast<uint64_t>(v.y) ^ (lower & sign);
-  const uint64_t s = u ^ (backward & sign);
-  const double numerator = std::bit_cast<double>((w & ~backward) | (s & backward));
-  const double denominator = std::bit_cast<double>(w) + std::bit_cast<double>(s);
-  const double base = static_cast<double>((lower & 2) | (backward & 1));
+// Two lanes of doubles, or of their bits, in one SSE2 register (a GCC and
+// Clang vector extension): each lane sees the IEEE operations it would see
+// in scalar code, in the same order, so it gets the same bits.
+using Doubles = double __attribute__((vector_size(16)));
+using DoubleBits = int64_t __attribute__((vector_size(16)));
+
+// PseudoAngle of the two directions (x[i], y[i]), without branches: A3 takes
+// the pseudo-angles of both ends of every neighbour's arc, whose quadrants a
+// branch predictor cannot guess, and two at a time halves the divisions.
+// The same values as PseudoAngle, except that a -0 comes out +0 (keys are
+// only compared, and -0 == +0). In the lower half the upper half's forms
+// apply to (u, w) = -(x, y); then with s = u when forward (x >= 0 above,
+// x < 0 below) and s = -u when not: numerator w or s, denominator w + s,
+// base 0 or 1, plus 2 below. As negation, a + (-b) = a - b, a + b = b + a
+// and (-a) / b = -(a / b) are exact, each quadrant gets the bits of
+// PseudoAngle's own expression.
+inline Doubles PseudoAngles(Doubles x, Doubles y) {
+  const Doubles zero = {0.0, 0.0}, one = {1.0, 1.0}, two = {2.0, 2.0};
+  const DoubleBits sign = {INT64_MIN, INT64_MIN};
+  const DoubleBits lower = y < zero;  // all ones where true
+  const DoubleBits backward = (x < zero) ^ lower;
+  const DoubleBits u = reinterpret_cast<DoubleBits>(x) ^ (lower & sign);
+  const DoubleBits w = reinterpret_cast<DoubleBits>(y) ^ (lower & sign);
+  const DoubleBits s = u ^ (backward & sign);
+  const Doubles numerator = reinterpret_cast<Doubles>((w & ~backward) | (s & backward));
+  const Doubles denominator = reinterpret_cast<Doubles>(w) + reinterpret_cast<Doubles>(s);
+  // 0, 1, 2 or 3, exactly.
+  const Doubles base = reinterpret_cast<Doubles>(lower & reinterpret_cast<DoubleBits>(two)) +
+                       reinterpret_cast<Doubles>(backward & reinterpret_cast<DoubleBits>(one));
   return base + numerator / denominator;
 }
 

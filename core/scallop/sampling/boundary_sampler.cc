@@ -3,6 +3,7 @@
 // from its neighbours and then consumed by placing points on it.
 #include "scallop/sampling/boundary_sampler.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "scallop/sampling/available_boundary.h"
@@ -42,13 +43,25 @@ struct Arc {
   Vec2 from, to;
   double from_key, to_key;  // their pseudo-angles
 };
-Arc CoveredArc(Vec2 offset, double spacing_squared) {
-  // Centred on the direction o = offset, with ends along o -+ k o',
-  // k = sqrt(4 s^2 / D^2 - 1).
-  const double k = std::sqrt(4 * spacing_squared / SquaredLength(offset) - 1.0);
-  const Vec2 left{-offset.y, offset.x};
-  const Vec2 from = offset - k * left, to = offset + k * left;
-  return {from, to, PseudoAngleWithoutBranches(from), PseudoAngleWithoutBranches(to)};
+
+// The arcs that the neighbours at offset0 and offset1 from the candidate
+// cover, into arcs[0] and arcs[1]. Each is centred on the direction
+// o = offset, with ends along o -+ k o', k = sqrt(4 s^2 / D^2 - 1). Both at
+// once, in the two lanes of SSE2 registers: the divisions and square roots
+// are most of A3's arithmetic. Same bits as the scalar expressions.
+void CoveredArcs(Vec2 offset0, Vec2 offset1, double spacing_squared, Arc* arcs) {
+  const Doubles x = {offset0.x, offset1.x}, y = {offset0.y, offset1.y};
+  const Doubles four_s2 = {4 * spacing_squared, 4 * spacing_squared};
+  const Doubles t = four_s2 / (x * x + y * y) - 1.0;
+  const Doubles k = {std::sqrt(t[0]), std::sqrt(t[1])};
+  // o' = (-y, x); from = o - k o', to = o + k o'.
+  const Doubles from_x = x - k * -y, from_y = y - k * x;
+  const Doubles to_x = x + k * -y, to_y = y + k * x;
+  const Doubles from_key = PseudoAngles(from_x, from_y), to_key = PseudoAngles(to_x, to_y);
+  for (int lane = 0; lane < 2; ++lane) {
+    arcs[lane] = {
+        {from_x[lane], from_y[lane]}, {to_x[lane], to_y[lane]}, from_key[lane], to_key[lane]};
+  }
 }
 
 }  // namespace
@@ -115,8 +128,12 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
     nearby_count = grid.GatherNear(p, 2 * spacing, 4 * spacing_squared, index, nearby);
     // The arcs first, the subtractions after: the arcs' divisions and square
     // roots then overlap instead of waiting behind the subtractions' branches.
-    if (arcs.size() < nearby_count) arcs.resize(nearby_count);
-    for (size_t n = 0; n < nearby_count; ++n) arcs[n] = CoveredArc(nearby[n] - p, spacing_squared);
+    if (arcs.size() < nearby_count + 1) arcs.resize(nearby_count + 1);
+    for (size_t n = 0; n < nearby_count; n += 2) {
+      // An odd count repeats the last neighbour in the spare lane.
+      const Vec2 second = nearby[std::min(n + 1, nearby_count - 1)];
+      CoveredArcs(nearby[n] - p, second - p, spacing_squared, &arcs[n]);
+    }
     for (size_t n = 0; n < nearby_count && !boundary.empty(); ++n) {
       // Once nothing is left the rest of the neighbours cannot matter.
       const Arc& arc = arcs[n];
