@@ -17,6 +17,7 @@
 #include <limits>
 #include <thread>
 
+#include "malloc_tuning.h"
 #include "metrics_http_server.h"
 #include "page_token.h"
 #include "request_metrics.h"
@@ -63,6 +64,9 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
   app.add_option("--page-token-secret", flags.page_token_secret,
                  "Key of page tokens (default: derived from the world set)")
       ->envname("SCALLOPD_PAGE_TOKEN_SECRET");
+  app.add_option("--log-level", flags.log_level,
+                 "debug, info (a line per call), warn (failed calls only), error or off")
+      ->default_str(config.log_level);
   app.add_option("--default-world", flags.default_world, "World used when a request names none")
       ->default_str(config.default_world);
   app.add_option("--world", world_specs, "Named world NAME:SEED:MIN_DISTANCE:ALGORITHM[:DENSITY]");
@@ -94,6 +98,7 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
   apply("--drain-seconds", &ServerConfig::drain_seconds);
   apply("--page-token-secret", &ServerConfig::page_token_secret);
   apply("--default-world", &ServerConfig::default_world);
+  apply("--log-level", &ServerConfig::log_level);
   for (const std::string& spec : world_specs) {
     if (scallop::Status status = scallop::server::AddWorldSpec(spec, config); !status.ok()) {
       std::cerr << "scallopd: " << status.message() << '\n';
@@ -112,8 +117,10 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
 int main(int argc, char** argv) {
   ServerConfig config;
   if (std::optional<int> exit_code = ParseCommandLine(argc, argv, config)) return *exit_code;
+  scallop::server::TuneMallocForResponses();
   // Logs on stderr; stdout carries only the address line, for scripts and tests.
   spdlog::set_default_logger(spdlog::stderr_logger_mt("scallopd"));
+  spdlog::set_level(spdlog::level::from_str(config.log_level));  // validated: never "off" by mistake
 
   const scallop::server::WorldRegistry worlds(config.worlds, config.default_world);
   const scallop::server::PageTokenCodec page_tokens(

@@ -11,6 +11,9 @@ void RequestLog::Finish(const grpc::Status& status) const {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   if (metrics_ != nullptr) metrics_->Record(method_, status.error_code(), seconds, points_);
+  // A warm tile is answered in tens of microseconds: skip the formatting of
+  // lines the level drops.
+  if (!spdlog::should_log(status.ok() ? spdlog::level::info : spdlog::level::warn)) return;
   const double milliseconds = seconds * 1000;
   const std::string rect =
       rect_ ? fmt::format("[{},{})x[{},{})", rect_->x0, rect_->x1, rect_->y0, rect_->y1) : "-";

@@ -46,7 +46,8 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
                                     "max_noise_grid_samples",
                                     "max_follow_area",
                                     "follow_stall_seconds",
-                                    "metrics_listen"};
+                                    "metrics_listen",
+                                    "log_level"};
   std::string key;
   try {
     const YAML::Node root = YAML::LoadFile(path);
@@ -74,6 +75,7 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
     read("follow_stall_seconds", config.follow_stall_seconds);
     read("grace_seconds", config.grace_seconds);
     read("drain_seconds", config.drain_seconds);
+    read("log_level", config.log_level);
     read("page_token_secret", config.page_token_secret);
     read("default_world", config.default_world);
     for (const auto& entry : root["worlds"]) {
@@ -153,6 +155,10 @@ Status ValidateConfig(const ServerConfig& config) {
   }
   if (!(config.drain_seconds >= 0 && config.drain_seconds <= 3600)) {
     return InvalidArgument("drain_seconds: must be in [0, 3600]");
+  }
+  if (!std::set<std::string>{"debug", "info", "warn", "error", "off"}.contains(config.log_level)) {
+    return InvalidArgument("log_level: must be debug, info, warn, error or off, got '" +
+                           config.log_level + "'");
   }
   if (!config.worlds.contains(config.default_world)) {
     return InvalidArgument("default_world: no world named '" + config.default_world + "'");

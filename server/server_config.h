@@ -28,6 +28,8 @@ struct ServerConfig {
   double follow_stall_seconds = 10;          // a Follow client not reading is dropped after this
   double grace_seconds = 10;                 // in-flight requests get this long after SIGTERM
   double drain_seconds = 0;                  // NOT_SERVING this long before refusing new calls
+  // debug, info (a line per call), warn (failed calls only), error or off.
+  std::string log_level = "info";
   // Key for page tokens. Empty: derived from the world set (see page_token.h).
   std::string page_token_secret;
   std::string default_world = "default";

@@ -55,6 +55,9 @@ expect_status 0 "stream"
 if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "stream CSV differs from plane"; fi
 run "$scallop" points --server "$server" --world coast --rect "$rect"
 if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "named world differs from its inline twin"; fi
+# At the default log level every call leaves a line.
+if grep -q 'GetPoints world="seed=7 .* code=OK' "$work/server.log"; then pass; else
+  fail "no request line at log level info: $(tail -3 "$work/server.log")"; fi
 
 run "$scallop" plane --seed 7 --rect "$rect" --format json
 cp "$work/out" "$work/plane.json"
@@ -101,6 +104,7 @@ cat >"$work/config.yaml" <<'YAML'
 listen: 127.0.0.1:0
 max_page_size: 500
 default_world: dense
+log_level: warn
 worlds:
   dense: {seed: 9, min_distance: 0.5, algorithm: a1, density: 1.2}
 YAML
@@ -116,12 +120,20 @@ done
 run "$scallop" info --server "$configured" --json
 if grep -q '"default_world":"dense"' "$work/out" && grep -q '"max_page_size":500' "$work/out" &&
   grep -q 'density=1.2' "$work/out"; then pass; else fail "config file not applied: $(cat "$work/out")"; fi
+# At log level warn successful calls leave no line, failed ones do.
+run "$scallop" points --server "$configured" --rect 0,0,5,5
+run "$scallop" points --server "$configured" --rect 0,0,100000,100000
+if ! grep -q 'code=OK' "$work/server2.log" && grep -q 'GetPoints .*code=INVALID_ARGUMENT' "$work/server2.log"
+then pass; else fail "log_level warn not applied: $(tail -3 "$work/server2.log")"; fi
 kill -TERM "$config_pid"
 wait "$config_pid" || fail "configured scallopd did not exit 0"
 printf 'listen: 127.0.0.1:0\nmax_pages: 3\n' >"$work/bad.yaml"
 run "$scallopd" --config "$work/bad.yaml"
 expect_status 2 "bad config"
 if grep -q "unknown setting 'max_pages'" "$work/err"; then pass; else fail "bad config message: $(cat "$work/err")"; fi
+run "$scallopd" --log-level verbose
+expect_status 2 "bad --log-level"
+if grep -q "log_level: must be" "$work/err"; then pass; else fail "bad --log-level message: $(cat "$work/err")"; fi
 run "$scallopd" --world "x:1:0:a3"
 expect_status 2 "bad --world"
 if grep -q "world.min_distance" "$work/err"; then pass; else fail "bad --world message: $(cat "$work/err")"; fi
