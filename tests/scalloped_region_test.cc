@@ -284,6 +284,57 @@ TEST(ScallopedRegionTest, CachedEndsCheckCatchesAMovedCurve) {
   EXPECT_EQ(caught, planted);
 }
 
+// Whether two regions hold the same sectors, cached ends and area, bit for bit.
+bool SameBits(const ScallopedRegion& a, const ScallopedRegion& b) {
+  if (a.sectors().size() != b.sectors().size()) return false;
+  const double area_a = a.Area(), area_b = b.Area();
+  const Vec2 apex_a = a.apex(), apex_b = b.apex();
+  if (std::memcmp(&area_a, &area_b, sizeof(double)) != 0 ||
+      std::memcmp(&apex_a, &apex_b, sizeof(Vec2)) != 0) {
+    return false;
+  }
+  for (size_t i = 0; i < a.sectors().size(); ++i) {
+    const ScallopedSector &sa = a.sectors()[i], &sb = b.sectors()[i];
+    const double bounds_a[2] = {sa.angle_begin, sa.angle_end};
+    const double bounds_b[2] = {sb.angle_begin, sb.angle_end};
+    if (std::memcmp(bounds_a, bounds_b, sizeof(bounds_a)) != 0 || !(sa.near == sb.near) ||
+        !(sa.far == sb.far) ||
+        std::memcmp(&a.sector_ends(i), &b.sector_ends(i), sizeof(SectorEnds)) != 0) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// A1 moves one annulus to every new point instead of rebuilding it: the result, and everything
+// done to it afterwards, must be what Reset gives.
+TEST(ScallopedRegionTest, AssignMovedEqualsReset) {
+  for (uint64_t seed = 1; seed <= 300; ++seed) {
+    Rng rng(seed);
+    const Oracle oracle = RandomOracle(rng);
+    const ScallopedRegion shape = ScallopedRegion::Annulus(
+        {rng.Uniform(-1e3, 1e3), rng.Uniform(-1e3, 1e3)}, oracle.inner, oracle.outer);
+    ScallopedRegion moved = ScallopedRegion::Annulus({5.0, 5.0}, 1.0, 9.0);  // used before
+    moved.SubtractDisk({6.0, 5.0}, 3.0);
+    moved.AssignMoved(shape, oracle.apex);
+    ScallopedRegion reset = ScallopedRegion::Annulus(oracle.apex, oracle.inner, oracle.outer);
+    ASSERT_TRUE(SameBits(moved, reset)) << "seed " << seed;
+    oracle.ApplyTo(moved);
+    oracle.ApplyTo(reset);
+    ASSERT_TRUE(SameBits(moved, reset)) << "seed " << seed;
+  }
+}
+
+// Planted fault: the comparison tells apart an annulus moved to an apex one ulp away.
+TEST(ScallopedRegionTest, SameBitsCatchesAnApexOneUlpAway) {
+  const ScallopedRegion shape = ScallopedRegion::Annulus({0.0, 0.0}, 1.0, 2.0);
+  ScallopedRegion moved;
+  moved.AssignMoved(shape, {3.0, std::nextafter(4.0, 5.0)});
+  EXPECT_FALSE(SameBits(moved, ScallopedRegion::Annulus({3.0, 4.0}, 1.0, 2.0)));
+  moved.AssignMoved(shape, {3.0, 4.0});
+  EXPECT_TRUE(SameBits(moved, ScallopedRegion::Annulus({3.0, 4.0}, 1.0, 2.0)));
+}
+
 // A more accurate area check on fewer cases: Monte Carlo with many probes.
 TEST(ScallopedRegionTest, AreaMatchesMonteCarloClosely) {
   constexpr int kProbes = 200000;

@@ -329,6 +329,11 @@ void ScallopedRegion::Reset(Vec2 apex, double inner, double outer) {
   negligible_area_ = kNegligibleAreaFraction * area_;
 }
 
+void ScallopedRegion::AssignMoved(const ScallopedRegion& shape, Vec2 apex) {
+  *this = shape;  // vector assignment reuses capacity
+  apex_ = apex;
+}
+
 void ScallopedRegion::Clear() {
   sectors_.clear();
   sector_cache_.clear();

@@ -37,6 +37,11 @@ class ScallopedRegion {
   // a caller that builds many regions in turn (A1: one per new point) does not allocate. O(1).
   // REQUIRES: as Annulus.
   void Reset(Vec2 apex, double inner, double outer);
+  // Makes this region a copy of `shape` with its apex moved to `apex` (sectors are apex-relative,
+  // so nothing else changes), keeping this region's buffers' capacity. After
+  // shape.Reset(a, inner, outer) this equals Reset(apex, inner, outer) bit for bit, without its
+  // sincos and remainders. O(S) copies, no allocation once the buffers have grown.
+  void AssignMoved(const ScallopedRegion& shape, Vec2 apex);
 
   Vec2 apex() const { return apex_; }
   const std::vector<ScallopedSector>& sectors() const { return sectors_; }

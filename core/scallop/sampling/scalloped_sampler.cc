@@ -34,11 +34,13 @@ class ScallopedSampler {
         choice_(choice),
         rng_(rng),
         outer_radius_(problem.density * problem.min_distance),
-        spacing_(SpacingFor(problem.min_distance,
-                            MaxAbsCoordinate(problem, problem.domain.torus ? 0.0 : 2 * outer_radius_))),
+        spacing_(
+            SpacingFor(problem.min_distance,
+                       MaxAbsCoordinate(problem, problem.domain.torus ? 0.0 : 2 * outer_radius_))),
         d_squared_(problem.min_distance * problem.min_distance),
         grid_(problem.domain.rect, problem.domain.torus, problem.min_distance,
-              problem.domain.torus ? 0.0 : 2 * problem.min_distance + spacing_) {}
+              problem.domain.torus ? 0.0 : 2 * problem.min_distance + spacing_),
+        annulus_(ScallopedRegion::Annulus({0.0, 0.0}, spacing_, outer_radius_)) {}
 
   std::vector<Vec2> Run() {
     for (const Vec2& p : problem_.inert_points) AddInertPoint(p);
@@ -117,7 +119,7 @@ class ScallopedSampler {
     // Built in a reused scratch region (no allocation once it has grown), then copied out at
     // its final, usually small, size.
     ScallopedRegion& region = scratch_region_;
-    region.Reset(x, spacing_, outer_radius_);
+    region.AssignMoved(annulus_, x);
     if (!problem_.domain.torus) ClipToDomain(region);
     // Earlier points own what lies within r' of them; x's s-disk leaves their
     // neighbourhoods.
@@ -232,6 +234,7 @@ class ScallopedSampler {
   std::vector<Nearby> nearby_;  // scratch of AddPoint
   std::vector<Nearby> in_reach_;    // scratch of AddPoint: points whose neighbourhood x may cut
   ScallopedRegion scratch_region_;  // scratch of AddPoint
+  const ScallopedRegion annulus_;   // every new point's annulus s..r', made once, moved to each
   AreaSumTree areas_;             // A1
   std::vector<int32_t> candidates_;  // A2
   // With a stop rectangle: how many non-empty neighbourhoods belong to points
