@@ -1,6 +1,7 @@
 // A3's fast parts against their plain twins, and A3's output pinned. The
-// branch-free neighbour gather and the two-lane pseudo-angles must give what
-// PointGrid::ForEachNear with the distance test and PseudoAngle give; and
+// branch-free neighbour gather, BoundaryGrid's tiled one and the two-lane
+// pseudo-angles must give what PointGrid::ForEachNear with the distance test,
+// PointGrid::GatherNear and PseudoAngle give; and
 // SampleBoundary must give the bits it gave before they were written, so a
 // speed-up that moves a point, reorders points or changes the random draws
 // fails here, on bounded domains and tori too, not only in the plane's
@@ -14,6 +15,7 @@
 
 #include "scallop/random/rng.h"
 #include "scallop/sampling/available_boundary.h"
+#include "scallop/sampling/boundary_grid.h"
 #include "scallop/sampling/boundary_sampler.h"
 #include "scallop/sampling/point_grid.h"
 
@@ -95,6 +97,45 @@ TEST(BoundarySamplerPartsTest, GatherNearMatchesForEachNearAndTheDistanceTest) {
       });
       const size_t count = grid.GatherNear(p, radius, limit_squared, stored ? self : -1, gathered);
       ASSERT_EQ(count, expected.size()) << "query " << query;
+      for (size_t k = 0; k < count; ++k) {
+        EXPECT_EQ(gathered[k], expected[k]) << "query " << query << " neighbour " << k;
+      }
+    }
+  }
+}
+
+// BoundaryGrid, A3's tiled grid for rectangles, must gather what PointGrid
+// gathers: the same positions in the same order, on grids of many tiles and
+// of one, near the edges and with cells on both sides of a tile's edge.
+TEST(BoundarySamplerPartsTest, BoundaryGridGathersWhatPointGridGathers) {
+  Rng dice(HashWords({43}));
+  for (int trial = 0; trial < 24; ++trial) {
+    const double d = dice.Uniform(0.3, 2.0);
+    const double x0 = dice.Uniform(-50, 50), y0 = dice.Uniform(-50, 50);
+    const double sides = trial % 4 == 0 ? dice.Uniform(1, 4) : dice.Uniform(8, 40);
+    const Domain domain{{x0, y0, x0 + d * sides, y0 + d * dice.Uniform(1, 40)}, false};
+    SCOPED_TRACE(::testing::Message() << "trial " << trial);
+    const std::vector<Vec2> points = SpacedPoints(domain, d, dice.NextBits());
+    const double margin = dice.Uniform(0, 3) * d;
+    PointGrid plain(domain.rect, false, d, margin);
+    BoundaryGrid tiled(domain.rect, d, margin);
+    for (size_t i = 0; i < points.size(); ++i) {
+      plain.Insert(static_cast<int32_t>(i), points[i]);
+      tiled.Insert(static_cast<int32_t>(i), points[i]);
+    }
+    std::vector<Vec2> expected, gathered;
+    for (int query = 0; query < 300; ++query) {
+      // Stored points (which must not see themselves) and spots in the grown domain.
+      const bool stored = query % 2 == 0;
+      const auto self = static_cast<int32_t>(dice.Below(points.size()));
+      const Vec2 p = stored ? points[static_cast<size_t>(self)]
+                            : Vec2{dice.Uniform(domain.rect.x0 - margin, domain.rect.x1 + margin),
+                                   dice.Uniform(domain.rect.y0 - margin, domain.rect.y1 + margin)};
+      const double radius = dice.Uniform(1.0, 2.2) * d;
+      const double limit_squared = radius * radius * dice.Uniform(0.5, 1.0);
+      const size_t count = plain.GatherNear(p, radius, limit_squared, stored ? self : -1, expected);
+      ASSERT_EQ(tiled.GatherNear(p, radius, limit_squared, stored ? self : -1, gathered), count)
+          << "query " << query;
       for (size_t k = 0; k < count; ++k) {
         EXPECT_EQ(gathered[k], expected[k]) << "query " << query << " neighbour " << k;
       }

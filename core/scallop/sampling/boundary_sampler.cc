@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "scallop/sampling/available_boundary.h"
+#include "scallop/sampling/boundary_grid.h"
 #include "scallop/sampling/point_grid.h"
 #include "scallop/sampling/spacing.h"
 
@@ -64,14 +65,14 @@ void CoveredArcs(Vec2 offset0, Vec2 offset1, double spacing_squared, Arc* arcs) 
   }
 }
 
-}  // namespace
-
-std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
-                                 std::vector<bool>* unprocessed) {
+// SampleBoundary with `grid`, empty, covering the domain (a torus) or the
+// domain grown by 2 d + spacing (a rectangle): PointGrid, or on a rectangle
+// BoundaryGrid, which holds the same cells in less memory.
+template <typename Grid>
+std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Grid& grid, Rng& rng,
+                             std::vector<bool>* unprocessed) {
   const Domain& domain = problem.domain;
   const double d = problem.min_distance;
-  const double reach = 2.0 * d;  // fixed points lie within 2 d of the domain
-  const double spacing = SpacingFor(d, MaxAbsCoordinate(problem, domain.torus ? 0.0 : reach));
   const double spacing_squared = spacing * spacing;
   const double d_squared = d * d;
   // Only the arc of x's disk at distance exactly `spacing` from the candidate
@@ -81,12 +82,17 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
   // candidate's boundary is given up as rounding slivers.
   constexpr int kMaxRejectedPlacements = 64;
 
-  PointGrid grid(domain.rect, domain.torus, d, domain.torus ? 0.0 : reach + spacing);
   std::vector<Vec2> points(problem.inert_points.begin(), problem.inert_points.end());
   for (size_t i = 0; i < points.size(); ++i) grid.Insert(static_cast<int32_t>(i), points[i]);
   points.insert(points.end(), problem.fixed_points.begin(), problem.fixed_points.end());
   const size_t fixed_count = points.size();
-  std::vector<int32_t> candidates;
+  // Each candidate's position with its index: the pool is small and stays in
+  // cache, while `points` grows to N (a cache miss per pick at 1M).
+  struct Candidate {
+    Vec2 position;
+    int32_t index;
+  };
+  std::vector<Candidate> candidates;
   // With a stop rectangle: how many candidates whose circle reaches it are
   // left. Once none is, every circle there is consumed, so the rectangle is
   // covered (F1 is continuous: an uncovered spot would put a spot at
@@ -96,7 +102,7 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
   int64_t pending_near_stop = 0;
   auto add_candidate = [&](int32_t index, Vec2 p) {
     grid.Insert(index, p);
-    candidates.push_back(index);
+    candidates.push_back({p, index});
     pending_near_stop += reaches_stop(p);
   };
   for (size_t i = problem.inert_points.size(); i < fixed_count; ++i) {
@@ -117,10 +123,9 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
   while (!candidates.empty() && !(stop && pending_near_stop == 0)) {
     // Uniform choice among candidates, as the paper prescribes.
     const size_t pick = rng.Below(candidates.size());
-    const int32_t index = candidates[pick];
+    const auto [p, index] = candidates[pick];
     candidates[pick] = candidates.back();
     candidates.pop_back();
-    const Vec2 p = points[static_cast<size_t>(index)];
     pending_near_stop -= reaches_stop(p);
 
     boundary.Reset();
@@ -169,12 +174,28 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
   }
   if (unprocessed) {
     unprocessed->assign(points.size() - fixed_count, false);
-    for (const int32_t index : candidates) {
+    for (const auto& [position, index] : candidates) {
       if (static_cast<size_t>(index) >= fixed_count) (*unprocessed)[index - fixed_count] = true;
     }
   }
   points.erase(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(fixed_count));
   return points;
+}
+
+}  // namespace
+
+std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
+                                 std::vector<bool>* unprocessed) {
+  const Domain& domain = problem.domain;
+  const double d = problem.min_distance;
+  const double reach = 2.0 * d;  // fixed points lie within 2 d of the domain
+  const double spacing = SpacingFor(d, MaxAbsCoordinate(problem, domain.torus ? 0.0 : reach));
+  if (domain.torus) {
+    PointGrid grid(domain.rect, true, d);
+    return SampleWith(problem, spacing, grid, rng, unprocessed);
+  }
+  BoundaryGrid grid(domain.rect, d, reach + spacing);
+  return SampleWith(problem, spacing, grid, rng, unprocessed);
 }
 
 }  // namespace scallop

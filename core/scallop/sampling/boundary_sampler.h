@@ -14,7 +14,7 @@ namespace scallop {
 // result is maximal for SpacingFor(d, ...) and every pair is at least d apart
 // in double precision. Points come back in generation order (fixed points
 // excluded). REQUIRES: a problem that ValidateSamplerOptions accepted.
-// Cost: O(N) time, about 50 bytes of grid per point.
+// Cost: O(N) time, about 40 bytes of grid per point (60 on a torus).
 // With `unprocessed`, also says which returned points the run never picked
 // (unprocessed[k] for point k): only those can have any boundary left when a
 // stop rectangle ended the run early, so a later run that takes the points as
