@@ -131,7 +131,8 @@ TEST(BoundarySamplerPartsTest, BoundaryGridGathersWhatPointGridGathers) {
       const Vec2 p = stored ? points[static_cast<size_t>(self)]
                             : Vec2{dice.Uniform(domain.rect.x0 - margin, domain.rect.x1 + margin),
                                    dice.Uniform(domain.rect.y0 - margin, domain.rect.y1 + margin)};
-      const double radius = dice.Uniform(1.0, 2.2) * d;
+      // Up to 8 x 8 cells (bits gathered first) and wider (every cell read).
+      const double radius = dice.Uniform(0.5, 3.5) * d;
       const double limit_squared = radius * radius * dice.Uniform(0.5, 1.0);
       const size_t count = plain.GatherNear(p, radius, limit_squared, stored ? self : -1, expected);
       ASSERT_EQ(tiled.GatherNear(p, radius, limit_squared, stored ? self : -1, gathered), count)

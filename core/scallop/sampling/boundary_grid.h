@@ -1,13 +1,16 @@
 // BoundaryGrid: A3's neighbour grid on a rectangle. PointGrid's cells (same
 // origin, width and count), but laid out for A3's one query, the 7 x 7 cells
-// around a candidate: positions only, 16 bytes a cell instead of 24, in tiles
-// of 8 x 8 cells so that the query touches at most 4 tiles (at 1M points a
-// PointGrid row is about 10 pages, and the query touched 7 of them).
+// around a candidate: a bit per cell says which hold a point, so the query
+// reads only those (at most 2 in 5); positions only, 16 bytes a cell instead
+// of 24, in tiles of 8 x 8 cells, so that it touches at most 4 tiles (at 1M
+// points a PointGrid row is about 10 pages, and the query touched 7 of them).
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -30,21 +33,30 @@ class BoundaryGrid {
     tile_columns_ = (columns_ + kTile - 1) / kTile;
     const int64_t tile_rows = (rows_ + kTile - 1) / kTile;
     positions_.resize(static_cast<size_t>(tile_columns_ * tile_rows * kTile * kTile), kEmpty);
+    // 8 spare bytes a row: OccupancyFrom reads 8 bytes from any column's byte.
+    occupancy_stride_ = (columns_ + 7) / 8 + 8;
+    occupancy_.resize(static_cast<size_t>(rows_ * occupancy_stride_));
   }
 
   // As PointGrid::Insert, but only the position is kept. REQUIRES: p within
   // the covered area and no point closer than min_distance already stored
   // (so every stored point is alone in its cell, and it is the only point there).
-  void Insert(int32_t /*index*/, Vec2 p) { positions_[CellIndex(ColumnOf(p.x), RowOf(p.y))] = p; }
+  void Insert(int32_t /*index*/, Vec2 p) {
+    const int64_t column = ColumnOf(p.x), row = RowOf(p.y);
+    positions_[CellIndex(column, row)] = p;
+    occupancy_[static_cast<size_t>(row * occupancy_stride_ + column / 8)] |=
+        static_cast<uint8_t>(1u << (column % 8));
+  }
 
   // What PointGrid::GatherNear gives on a rectangle: the positions of the
   // stored points other than point `self` with SquaredLength(q - p) <
   // limit_squared, among the cells within `radius` of p, in row-major order.
   // REQUIRES: self < 0 (no point excluded), or p is the position of stored
-  // point self. Non-const only because the query hides that point while it
-  // scans. O((radius / cell)^2), without a branch per cell.
+  // point self. O((radius / cell)^2); when the query spans at most 8 x 8
+  // cells (A3's 7 x 7), it reads only the occupied ones, whose bits it
+  // gathers first, and has no branch per cell.
   size_t GatherNear(Vec2 p, double radius, double limit_squared, int32_t self,
-                    std::vector<Vec2>& out) {
+                    std::vector<Vec2>& out) const {
     // Truncation is floor here: negatives are clamped to 0 either way.
     const int64_t c0 = std::max<int64_t>(TruncatedColumnOf(p.x - radius), 0);
     const int64_t c1 = std::min<int64_t>(TruncatedColumnOf(p.x + radius), columns_ - 1);
@@ -53,21 +65,36 @@ class BoundaryGrid {
     if (c0 > c1 || r0 > r1) return 0;
     const auto most = static_cast<size_t>((r1 - r0 + 1) * (c1 - c0 + 1));
     if (out.size() < most) out.resize(most);
-    // Point `self` is alone in p's own cell (Insert's REQUIRES): hide it there
-    // for the scan, instead of a test per cell.
-    const size_t own = CellIndex(std::clamp<int64_t>(TruncatedColumnOf(p.x), 0, columns_ - 1),
-                                 std::clamp<int64_t>(TruncatedRowOf(p.y), 0, rows_ - 1));
-    const Vec2 saved = positions_[own];
-    if (self >= 0) positions_[own] = kEmpty;
-    // Columns [c0, c1] fall in at most two tiles: `split` starts the second.
-    const int64_t split = std::min<int64_t>((c0 | (kTile - 1)) + 1, c1 + 1);
+    // Point `self` is alone in p's own cell (Insert's REQUIRES).
+    const int64_t own_column = std::clamp<int64_t>(TruncatedColumnOf(p.x), 0, columns_ - 1);
+    const int64_t own_row = std::clamp<int64_t>(TruncatedRowOf(p.y), 0, rows_ - 1);
     size_t kept = 0;
-    for (int64_t r = r0; r <= r1; ++r) {
-      const Vec2* row = &positions_[CellIndex(0, r)];  // row r of the first tile column
-      kept = Scan(row, c0, split, p, limit_squared, out, kept);
-      kept = Scan(row, split, c1 + 1, p, limit_squared, out, kept);
+    if (c1 - c0 >= kTile || r1 - r0 >= kTile) {  // a wide query: every cell
+      for (int64_t r = r0; r <= r1; ++r) {
+        for (int64_t c = c0; c <= c1; ++c) {
+          const Vec2 q = positions_[CellIndex(c, r)];
+          out[kept] = q;
+          kept += (SquaredLength(q - p) < limit_squared) &
+                  (self < 0 || c != own_column || r != own_row);
+        }
+      }
+      return kept;
     }
-    positions_[own] = saved;
+    // Bit 8 k + j: the cell of row r0 + k, column c0 + j, occupied. Ascending
+    // bits are row-major order.
+    const uint64_t row_mask = (uint64_t{2} << (c1 - c0)) - 1;
+    uint64_t occupied = 0;
+    for (int64_t r = r0; r <= r1; ++r) {
+      occupied |= (OccupancyFrom(c0, r) & row_mask) << (8 * (r - r0));
+    }
+    if (self >= 0) occupied &= ~(uint64_t{1} << (8 * (own_row - r0) + (own_column - c0)));
+    while (occupied != 0) {
+      const int bit = std::countr_zero(occupied);
+      occupied &= occupied - 1;
+      const Vec2 q = positions_[CellIndex(c0 + (bit & 7), r0 + (bit >> 3))];
+      out[kept] = q;
+      kept += SquaredLength(q - p) < limit_squared;
+    }
     return kept;
   }
 
@@ -80,17 +107,11 @@ class BoundaryGrid {
   static constexpr Vec2 kEmpty{std::numeric_limits<double>::infinity(),
                                std::numeric_limits<double>::infinity()};
 
-  // Columns [begin, end) (within one tile) of the row whose first tile's
-  // cells start at `row`: every cell written to out, a kept one advances.
-  static size_t Scan(const Vec2* row, int64_t begin, int64_t end, Vec2 p, double limit_squared,
-                     std::vector<Vec2>& out, size_t kept) {
-    if (begin >= end) return kept;
-    const Vec2* cell = row + (begin / kTile) * kTile * kTile + begin % kTile;
-    for (int64_t c = begin; c < end; ++c, ++cell) {
-      out[kept] = *cell;
-      kept += SquaredLength(*cell - p) < limit_squared;
-    }
-    return kept;
+  // Row r's occupancy bits from column c on (bit j: column c + j), at least 56 of them.
+  uint64_t OccupancyFrom(int64_t c, int64_t r) const {
+    uint64_t word;
+    std::memcpy(&word, &occupancy_[static_cast<size_t>(r * occupancy_stride_ + c / 8)], 8);
+    return word >> (c % 8);  // little-endian: byte k holds columns 8 k to 8 k + 7
   }
 
   int64_t ColumnOf(double x) const {
@@ -115,6 +136,8 @@ class BoundaryGrid {
   double cell_size_;
   int64_t columns_, rows_, tile_columns_;
   std::vector<Vec2> positions_;
+  int64_t occupancy_stride_;        // bytes a row
+  std::vector<uint8_t> occupancy_;  // a bit per cell, row-major: which cells hold a point
 };
 
 }  // namespace scallop
