@@ -144,6 +144,27 @@ TEST(BoundarySamplerPartsTest, BoundaryGridGathersWhatPointGridGathers) {
   }
 }
 
+// A grid of more than 4 MiB, whose positions come from HugePageAllocator's
+// aligned, huge-page path: the same gathers, and (under ASan) a clean free.
+TEST(BoundarySamplerPartsTest, LargeBoundaryGridGathersWhatPointGridGathers) {
+  const Domain domain{{-300, -200, 300, 200}, false};
+  const std::vector<Vec2> points = SpacedPoints(domain, 1.0, 44);
+  PointGrid plain(domain.rect, false, 1.0, 3.0);
+  BoundaryGrid tiled(domain.rect, 1.0, 3.0);
+  ASSERT_TRUE(HugePageAllocator<Vec2>::Large(plain.cell_count()));
+  for (size_t i = 0; i < points.size(); ++i) {
+    plain.Insert(static_cast<int32_t>(i), points[i]);
+    tiled.Insert(static_cast<int32_t>(i), points[i]);
+  }
+  std::vector<Vec2> expected, gathered;
+  for (size_t i = 0; i < points.size(); i += 97) {
+    const auto self = static_cast<int32_t>(i);
+    const size_t count = plain.GatherNear(points[i], 2.0, 4.0, self, expected);
+    ASSERT_EQ(tiled.GatherNear(points[i], 2.0, 4.0, self, gathered), count) << i;
+    for (size_t k = 0; k < count; ++k) EXPECT_EQ(gathered[k], expected[k]) << i << " " << k;
+  }
+}
+
 // A run's points, unprocessed flags and next random number, hashed.
 uint64_t RunHash(const SamplingProblem& problem, uint64_t seed) {
   Rng rng(seed);

@@ -10,14 +10,51 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <memory>
+#include <new>
 #include <vector>
+
+#if __has_include(<sys/mman.h>)
+#include <sys/mman.h>
+#endif
 
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
 
 namespace scallop {
+
+// Allocates large arrays (4 MiB and more) aligned to 2 MiB and asks Linux to
+// back them with huge pages: at 1M points BoundaryGrid's positions span
+// 40 MB, and with 4 KiB pages a query's rows cost TLB misses and each
+// page's first touch a fault (kernel time was 8% of a 1M run in perf).
+template <typename T>
+struct HugePageAllocator {
+  using value_type = T;
+  static constexpr size_t kHuge = size_t{2} << 20;
+  HugePageAllocator() = default;
+  template <typename U>
+  explicit HugePageAllocator(const HugePageAllocator<U>&) {}
+  static bool Large(size_t n) { return n >= 2 * kHuge / sizeof(T); }
+  T* allocate(size_t n) {
+    if (!Large(n)) return std::allocator<T>().allocate(n);
+    if (n > (SIZE_MAX - kHuge) / sizeof(T)) throw std::bad_alloc();
+    const size_t bytes = (n * sizeof(T) + kHuge - 1) / kHuge * kHuge;
+    void* p = std::aligned_alloc(kHuge, bytes);
+    if (p == nullptr) throw std::bad_alloc();
+#ifdef MADV_HUGEPAGE
+    madvise(p, bytes, MADV_HUGEPAGE);  // advice only: its failure changes nothing
+#endif
+    return static_cast<T*>(p);
+  }
+  void deallocate(T* p, size_t n) {
+    if (!Large(n)) return std::allocator<T>().deallocate(p, n);
+    std::free(p);
+  }
+  friend bool operator==(const HugePageAllocator&, const HugePageAllocator&) { return true; }
+};
 
 class BoundaryGrid {
  public:
@@ -135,7 +172,7 @@ class BoundaryGrid {
   Vec2 origin_;
   double cell_size_;
   int64_t columns_, rows_, tile_columns_;
-  std::vector<Vec2> positions_;
+  std::vector<Vec2, HugePageAllocator<Vec2>> positions_;
   int64_t occupancy_stride_;        // bytes a row
   std::vector<uint8_t> occupancy_;  // a bit per cell, row-major: which cells hold a point
 };
