@@ -1,7 +1,7 @@
 // A3's fast parts against their plain twins, and A3's output pinned. The
-// branch-free neighbour gather, BoundaryGrid's tiled one and the two-lane
-// pseudo-angles must give what PointGrid::ForEachNear with the distance test,
-// PointGrid::GatherNear and PseudoAngle give; and
+// neighbour gathers (PointGrid's, BoundaryGrid's tiled one) and the two-lane
+// pseudo-angles must give what PointGrid::ForEachNear with the distance test
+// and PseudoAngle give; and
 // SampleBoundary must give the bits it gave before they were written, so a
 // speed-up that moves a point, reorders points or changes the random draws
 // fails here, on bounded domains and tori too, not only in the plane's

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 #include "scallop/geometry/rect.h"
@@ -61,10 +60,10 @@ class PointGrid {
   // Writes to out[0, n) and returns n: the positions (nearest images on a
   // torus) of the stored points other than point `self` whose squared
   // distance to p, SquaredLength(q - p) in double precision, is below
-  // `limit_squared`, in ForEachNear's order (the points ForEachNear(p, radius,
-  // ...) visits that pass that test). `out` is scratch: it only ever grows.
-  // REQUIRES: limit_squared <= radius^2. O((radius / cell)^2), and on a
-  // rectangle without a branch per cell, whose occupancy a CPU cannot predict.
+  // `limit_squared`, in ForEachNear's order. `out` is scratch: it only ever
+  // grows. A3 uses it on tori; on rectangles A3 has BoundaryGrid, whose
+  // tests take this as the plain answer. REQUIRES: limit_squared <= radius^2.
+  // O((radius / cell)^2).
   size_t GatherNear(Vec2 p, double radius, double limit_squared, int32_t self,
                     std::vector<Vec2>& out) const {
     const int64_t c0 = ColumnOf(p.x - radius), c1 = ColumnOf(p.x + radius);
@@ -72,22 +71,9 @@ class PointGrid {
     const auto most = static_cast<size_t>((r1 - r0 + 1) * (c1 - c0 + 1));
     if (out.size() < most) out.resize(most);
     size_t kept = 0;
-    if (torus_) {
-      ForEachNear(p, radius, [&](int32_t index, Vec2 q) {
-        if (index != self && SquaredLength(q - p) < limit_squared) out[kept++] = q;
-      });
-      return kept;
-    }
-    for (int64_t r = std::max<int64_t>(r0, 0); r <= std::min<int64_t>(r1, rows_ - 1); ++r) {
-      const Cell* row = &cells_[static_cast<size_t>(r * columns_)];
-      for (int64_t c = std::max<int64_t>(c0, 0); c <= std::min<int64_t>(c1, columns_ - 1); ++c) {
-        // Every cell is written, a kept one advances. An empty cell's position
-        // is infinite, so it fails the distance test without a test of its own.
-        const Cell& cell = row[c];
-        out[kept] = cell.position;
-        kept += (SquaredLength(cell.position - p) < limit_squared) & (cell.index != self);
-      }
-    }
+    ForEachNear(p, radius, [&](int32_t index, Vec2 q) {
+      if (index != self && SquaredLength(q - p) < limit_squared) out[kept++] = q;
+    });
     return kept;
   }
 
@@ -106,8 +92,7 @@ class PointGrid {
 
  private:
   struct Cell {
-    // Infinite while empty: GatherNear relies on it.
-    Vec2 position{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    Vec2 position;
     int32_t index = -1;
   };
 
