@@ -19,11 +19,22 @@ namespace {
 // grid reaches 3 d beyond it, so that grid answers it.
 constexpr auto kRegionsPerHalfAxis = static_cast<int64_t>(kPrecisionRangeInD / kRegionSideInD);
 
-RegionKey ClampedRegionOf(const RegionLayout& layout, Vec2 p) {
-  RegionKey key = layout.RegionOf(p.x, p.y);
-  key.i = std::clamp(key.i, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
-  key.j = std::clamp(key.j, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
-  return key;
+// floor(v) as an integer, for |v| < 2^62, without a library call (x86-64
+// without SSE4.1 has no floor instruction).
+int64_t FloorToInt64(double v) {
+  const auto truncated = static_cast<int64_t>(v);
+  return truncated - (v < static_cast<double>(truncated) ? 1 : 0);
+}
+
+// The region of p by multiplication (inverse_side = 1 / S, rounded), kept
+// inside the precision range's regions. Rounding can move a position within
+// 2^-24 S of a seam to the neighbouring region; that is harmless where any
+// grid holding p's 3x3 block will do, since every grid reaches 3 d past its
+// region.
+RegionKey ApproximateRegionOf(Vec2 p, double inverse_side) {
+  return {
+      std::clamp(FloorToInt64(p.x * inverse_side), -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1),
+      std::clamp(FloorToInt64(p.y * inverse_side), -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1)};
 }
 
 // `rect` cut to the precision range, where the world has its points.
@@ -48,13 +59,6 @@ constexpr size_t kMaxProbes = 16;
 constexpr int64_t kWindowSide = 64;
 constexpr size_t kWindowMinPositions = 1024;
 constexpr uint32_t kNoGrid = ~uint32_t{0};
-
-// floor(v) as an integer, for |v| < 2^62, without a library call (x86-64
-// without SSE4.1 has no floor instruction).
-int64_t FloorToInt64(double v) {
-  const auto truncated = static_cast<int64_t>(v);
-  return truncated - (v < static_cast<double>(truncated) ? 1 : 0);
-}
 
 size_t CallSlotCount(size_t positions) {
   return std::min(kMaxCallSlots, std::bit_ceil(std::max<size_t>(positions, 1)));
@@ -185,7 +189,7 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
   RegionKey window_low;
   if (positions.size() >= kWindowMinPositions) {
     window.assign(kWindowSide * kWindowSide, kNoGrid);
-    const RegionKey first = ClampedRegionOf(layout, positions[0]);
+    const RegionKey first = ApproximateRegionOf(positions[0], inverse_side);
     window_low = {first.i - kWindowSide / 2, first.j - kWindowSide / 2};
   }
   // The grid of `key` outside the window, or the first time in it.
@@ -207,23 +211,14 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
     return Status::Ok();
   };
   grid_of.resize(positions.size());
-  // The region of the previous position: coherent batches (images, paths)
-  // skip the region arithmetic while they stay in it.
-  Rect current_region;
+  // Coherent batches (images, paths) skip the lookup while they stay in one
+  // region.
+  RegionKey current_key;
   uint32_t current = 0;
   for (size_t k = 0; k < positions.size(); ++k) {
-    const Vec2 p = positions[k];
-    if (k == 0 || !current_region.Contains(p)) {
-      // A guess by multiplication, checked against the region's own edges
-      // (exact); RegionLayout's division only when the guess is off.
-      RegionKey key{FloorToInt64(p.x * inverse_side), FloorToInt64(p.y * inverse_side)};
-      key.i = std::clamp(key.i, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
-      key.j = std::clamp(key.j, -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1);
-      current_region = layout.RegionRect(key);
-      if (!current_region.Contains(p)) {
-        key = ClampedRegionOf(layout, p);
-        current_region = layout.RegionRect(key);
-      }
+    const RegionKey key = ApproximateRegionOf(positions[k], inverse_side);
+    if (k == 0 || key != current_key) {
+      current_key = key;
       const auto wi = static_cast<uint64_t>(key.i - window_low.i);
       const auto wj = static_cast<uint64_t>(key.j - window_low.j);
       uint32_t* in_window = !window.empty() && wi < kWindowSide && wj < kWindowSide

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 namespace scallop {
 namespace {
@@ -38,22 +39,78 @@ constexpr uint32_t kRunPad = kRunPoints;
 // exceeds any real one (positions and points are within 2^288), yet finite,
 // so that a key keeps a finite double's bits.
 constexpr double kPadCoordinate = 0x1.0p+509;
-constexpr double kFarKey = 0x1.0p+1023;
 
-// The three smallest keys offered, kept by min/max without branching on the
-// data. The keys are held as doubles: non-negative finite doubles order as
-// their bits do, and x86's minsd/maxsd are what `a < b ? a : b` compiles to,
-// where integer min/max became unpredictable branches.
+// Keys kLanes at a time, one per lane of a GCC and Clang vector extension:
+// an SSE2 register holds two, an AVX one four. Each lane sees the IEEE
+// operations scalar code would, in the same order, so it gets the same bits.
+// Passing them by value has no fixed ABI without AVX, hence GCC's -Wpsabi
+// note; they never cross this file, so the note is silenced here.
+#pragma GCC diagnostic ignored "-Wpsabi"
+#ifdef __AVX__
+constexpr int kLanes = 4;
+using Keys = double __attribute__((vector_size(32)));
+using KeyBits = uint64_t __attribute__((vector_size(32)));
+constexpr KeyBits kLaneIndex = {0, 1, 2, 3};
+#else
+constexpr int kLanes = 2;
+using Keys = double __attribute__((vector_size(16)));
+using KeyBits = uint64_t __attribute__((vector_size(16)));
+constexpr KeyBits kLaneIndex = {0, 1};
+#endif
+static_assert(kRunPoints % kLanes == 0);
+using Pair = double __attribute__((vector_size(16)));
+static_assert(sizeof(Pair) == sizeof(Vec2));
+
+// Non-negative finite doubles order as their bits do, and `a < b ? a : b`
+// is minpd: the keys are ranked as doubles, without branching on the data.
+inline Keys Min(Keys a, Keys b) { return a < b ? a : b; }
+inline Keys Max(Keys a, Keys b) { return a > b ? a : b; }
+
+inline Keys Broadcast(double value) {
+  Keys keys;
+  for (int lane = 0; lane < kLanes; ++lane) keys[lane] = value;
+  return keys;
+}
+
+// The three smallest keys offered to each lane, in order. Every operation
+// is a min or max of two variables: with a constant operand GCC 12 built
+// compare-and-blend sequences instead of minpd/maxpd.
 struct SmallestKeys {
-  static double Min(double a, double b) { return a < b ? a : b; }
-  static double Max(double a, double b) { return a > b ? a : b; }
-  double first = kFarKey, second = kFarKey, third = kFarKey;
-  void Offer(double key) {
-    const double high1 = Max(first, key);
-    first = Min(first, key);
-    const double high2 = Max(second, high1);
+  Keys first, second, third;
+
+  SmallestKeys(Keys a, Keys b, Keys c) { Sort(a, b, c); }
+
+  void Offer(Keys keys) {
+    const Keys high1 = Max(first, keys);
+    first = Min(first, keys);
+    const Keys high2 = Max(second, high1);
     second = Min(second, high1);
     third = Min(third, high2);
+  }
+
+  // Lane 0 gets the three smallest of all lanes.
+  void MergeAllLanes() {
+    MergeLanes<1>();
+    if constexpr (kLanes == 4) MergeLanes<2>();
+  }
+
+ private:
+  void Sort(Keys a, Keys b, Keys c) {
+    const Keys low = Min(a, b), high = Max(a, b);
+    first = Min(low, c);
+    const Keys rest = Max(low, c);
+    second = Min(high, rest);
+    third = Max(high, rest);
+  }
+
+  // Each lane gets the three smallest of its own and of lane `lane ^ swap`'s:
+  // with both sorted, the lane-wise minima of one and the other reversed are
+  // the three smallest of the six (a bitonic half-cleaner).
+  template <int kSwap>
+  void MergeLanes() {
+    constexpr KeyBits swap = kLaneIndex ^ kSwap;
+    Sort(Min(first, __builtin_shuffle(third, swap)), Min(second, __builtin_shuffle(second, swap)),
+         Min(third, __builtin_shuffle(first, swap)));
   }
 };
 
@@ -86,28 +143,31 @@ NearestSearchGrid::NearestSearchGrid(double min_distance, RegionKey key,
   cell_start_.resize(kSide * kSide + 1);
   for (int c = 0; c < kSide * kSide; ++c) counts[c + 1] += counts[c];
   std::copy(counts.begin(), counts.end(), cell_start_.begin());
-  points_.resize(cell_start_.back() + kRunPad, {kPadCoordinate, kPadCoordinate});
+  xs_.resize(cell_start_.back() + kRunPad, kPadCoordinate);
+  ys_.resize(cell_start_.back() + kRunPad, kPadCoordinate);
   ids_.resize(cell_start_.back() + kRunPad, 0);
-  quick_ = points_.size() <= kIndexMask + 1;
+  quick_ = ids_.size() <= kIndexMask + 1;
   // Stable within a cell (input order), so a grid is a pure function of its input.
   for (size_t k = 0; k < points.size(); ++k) {
     if (cell_of[k] < 0) continue;
     const uint32_t slot = counts[cell_of[k]]++;
-    points_[slot] = points[k];
+    xs_[slot] = points[k].x;
+    ys_[slot] = points[k].y;
     ids_[slot] = ids[k];
   }
 }
 
 size_t NearestSearchGrid::Bytes() const {
   return sizeof(*this) + cell_start_.capacity() * sizeof(uint32_t) +
-         points_.capacity() * sizeof(Vec2) + ids_.capacity() * sizeof(uint64_t);
+         (xs_.capacity() + ys_.capacity()) * sizeof(double) + ids_.capacity() * sizeof(uint64_t);
 }
 
 void NearestSearchGrid::ScanRow(int row, int first, int last, const Vec2& p,
                                 TwoNearest& best) const {
   const uint32_t end = cell_start_[row * kSide + last + 1];
   for (uint32_t k = cell_start_[row * kSide + first]; k < end; ++k) {
-    OfferCandidate(SquaredDistanceFrom(p, points_[k]), ids_[k], points_[k], best);
+    const Vec2 q = Point(k);
+    OfferCandidate(SquaredDistanceFrom(p, q), ids_[k], q, best);
   }
 }
 
@@ -117,41 +177,58 @@ inline bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy,
   // of a row, the far pads, possibly a point twice): extra points are real,
   // or farther than any block reaches, so they cannot make a wrong answer
   // look right.
-  SmallestKeys keys;
-  const double px = p.x, py = p.y;
-  const Vec2* points = points_.data();
-  auto offer = [&](uint32_t k) {
-    const double dx = px - points[k].x, dy = py - points[k].y;  // SquaredDistanceFrom's order
-    const uint64_t bits = std::bit_cast<uint64_t>(dx * dx + dy * dy);
-    keys.Offer(std::bit_cast<double>((bits & ~kIndexMask) | k));
+  const Keys px = Broadcast(p.x), py = Broadcast(p.y);
+  // The keys of points first .. first + kLanes - 1.
+  auto keys_from = [&](uint32_t first) {
+    Keys x, y;
+    std::memcpy(&x, xs_.data() + first, sizeof(x));
+    std::memcpy(&y, ys_.data() + first, sizeof(y));
+    const Keys dx = px - x, dy = py - y;  // SquaredDistanceFrom's order
+    const auto bits = reinterpret_cast<KeyBits>(dx * dx + dy * dy);
+    return reinterpret_cast<Keys>((bits & ~kIndexMask) | (first + kLaneIndex));
   };
-  for (int row = cy - 1; row <= cy + 1; ++row) {
-    const uint32_t first = cell_start_[row * kSide + cx - 1];
-    const uint32_t end = cell_start_[row * kSide + cx + 2];
-    for (uint32_t j = 0; j < kRunPoints; ++j) offer(first + j);
-    for (uint32_t k = first + kRunPoints; k < end; ++k) offer(k);
+  uint32_t first[3], end[3];
+  for (int r = 0; r < 3; ++r) {
+    const int row = cy - 1 + r;
+    first[r] = cell_start_[row * kSide + cx - 1];
+    end[r] = cell_start_[row * kSide + cx + 2];
   }
+  constexpr int kVectors = 3 * kRunPoints / kLanes;  // for the runs' first kRunPoints
+  static_assert(kVectors >= 3);
+  Keys fixed[kVectors];
+  for (int v = 0; v < kVectors; ++v) {
+    fixed[v] = keys_from(first[v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
+  }
+  SmallestKeys keys(fixed[0], fixed[1], fixed[2]);
+  for (int v = 3; v < kVectors; ++v) keys.Offer(fixed[v]);
+  for (int r = 0; r < 3; ++r) {
+    for (uint32_t k = first[r] + kRunPoints; k < end[r]; k += kLanes) keys.Offer(keys_from(k));
+  }
+  keys.MergeAllLanes();
   // Distinct truncated distances: the first key's point is strictly nearer
   // than every other point examined, and the second's strictly second (a
   // point examined twice would tie with itself). Ties by id cannot arise, so
   // the exact order by (squared, id) is this one. Otherwise (ties, or
   // distances equal to 2^-36), the exact scan decides.
-  const auto first = std::bit_cast<uint64_t>(keys.first);
-  const auto second = std::bit_cast<uint64_t>(keys.second);
-  const auto third = std::bit_cast<uint64_t>(keys.third);
-  if ((first >> kIndexBits) == (second >> kIndexBits) ||
-      (second >> kIndexBits) == (third >> kIndexBits)) {
+  const auto key1 = std::bit_cast<uint64_t>(keys.first[0]);
+  const auto key2 = std::bit_cast<uint64_t>(keys.second[0]);
+  const auto key3 = std::bit_cast<uint64_t>(keys.third[0]);
+  if ((key1 >> kIndexBits) == (key2 >> kIndexBits) ||
+      (key2 >> kIndexBits) == (key3 >> kIndexBits)) {
     return false;
   }
-  const auto i1 = static_cast<uint32_t>(first & kIndexMask);
-  const auto i2 = static_cast<uint32_t>(second & kIndexMask);
-  best.squared1 = SquaredDistanceFrom(p, points_[i1]);
-  best.squared2 = SquaredDistanceFrom(p, points_[i2]);
+  const auto i1 = static_cast<uint32_t>(key1 & kIndexMask);
+  const auto i2 = static_cast<uint32_t>(key2 & kIndexMask);
+  best.squared1 = SquaredDistanceFrom(p, Point(i1));
+  best.squared2 = SquaredDistanceFrom(p, Point(i2));
   if (!(best.squared2 <= radius1 * radius1)) return false;  // phase 2 needed (or a pad)
   best.id1 = ids_[i1];
   best.id2 = ids_[i2];
-  best.point1 = points_[i1];
-  best.point2 = points_[i2];
+  // Each point as one 16-byte store: the caller reads it so, and one built
+  // from two 8-byte stores would stall that read (no store forwarding).
+  const Pair point1 = {xs_[i1], ys_[i1]}, point2 = {xs_[i2], ys_[i2]};
+  best.point1 = std::bit_cast<Vec2>(point1);
+  best.point2 = std::bit_cast<Vec2>(point2);
   return true;
 }
 

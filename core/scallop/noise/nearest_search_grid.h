@@ -105,14 +105,18 @@ class NearestSearchGrid {
   bool FindInBlockQuickly(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
 
   RegionKey key_;
-  double cell_ = 0;                   // cell side, d
-  double inverse_cell_ = 0;           // 1 / d, rounded
-  double slack_ = 0;                  // bound on rounding in cell coordinates, in world units
-  Vec2 origin_;                       // low corner of cell (0, 0)
-  std::vector<uint32_t> cell_start_;  // kCellsPerSide^2 + 1 offsets into points_ (row-major)
-  std::vector<Vec2> points_;          // bucketed by cell, then a few far pads (.cc)
-  std::vector<uint64_t> ids_;         // ids_[k] is the id of points_[k]
-  bool quick_ = false;                // points_ indices fit FindInBlockQuickly's keys
+  double cell_ = 0;          // cell side, d
+  double inverse_cell_ = 0;  // 1 / d, rounded
+  double slack_ = 0;         // bound on rounding in cell coordinates, in world units
+  Vec2 origin_;              // low corner of cell (0, 0)
+  Vec2 Point(uint32_t k) const { return {xs_[k], ys_[k]}; }
+
+  std::vector<uint32_t> cell_start_;  // kCellsPerSide^2 + 1 offsets into the points (row-major)
+  // The points' coordinates, apart so that four load at once: bucketed by
+  // cell, then a few far pads (.cc).
+  std::vector<double> xs_, ys_;
+  std::vector<uint64_t> ids_;  // ids_[k] is the id of point k
+  bool quick_ = false;         // point indices fit FindInBlockQuickly's keys
 };
 
 }  // namespace scallop
