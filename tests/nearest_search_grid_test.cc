@@ -8,11 +8,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ostream>
+#include <string>
 #include <vector>
 
 #include "scallop/random/rng.h"
 
 namespace scallop {
+
+// For test names: "kTwoLanes" rather than the enum's bytes.
+void PrintTo(NearestSearchGrid::FirstPassWidth width, std::ostream* out) {
+  *out << (width == NearestSearchGrid::FirstPassWidth::kTwoLanes ? "kTwoLanes" : "kWidest");
+}
+
 namespace {
 
 struct PointSet {
@@ -43,6 +51,25 @@ bool Same(const TwoNearest& a, const TwoNearest& b) {
   return a.id1 == b.id1 && a.id2 == b.id2 && a.squared1 == b.squared1 && a.squared2 == b.squared2;
 }
 
+// Every test runs the search's first pass in each vector width: two lanes
+// (SSE2) and the widest this CPU has (four with AVX2, else two again).
+class NearestSearchGridTest : public testing::TestWithParam<NearestSearchGrid::FirstPassWidth> {};
+
+INSTANTIATE_TEST_SUITE_P(EveryWidth, NearestSearchGridTest,
+                         testing::Values(NearestSearchGrid::FirstPassWidth::kTwoLanes,
+                                         NearestSearchGrid::FirstPassWidth::kWidest),
+                         [](const auto& info) {
+                           return info.param == NearestSearchGrid::FirstPassWidth::kTwoLanes
+                                      ? std::string("TwoLanes")
+                                      : std::string("Widest");
+                         });
+
+TEST_P(NearestSearchGridTest, RunsTheRequestedWidth) {
+  const NearestSearchGrid grid(1.0, {0, 0}, {}, {}, GetParam());
+  const bool widest = GetParam() == NearestSearchGrid::FirstPassWidth::kWidest;
+  EXPECT_EQ(grid.FirstPassLanes(), widest && NearestSearchGrid::FourLanesAvailable() ? 4 : 2);
+}
+
 // An integer lattice (d = 1) over region (0, 0) and its margin, with ids
 // shuffled so that "smaller id" is not "first scanned".
 PointSet Lattice(uint64_t seed) {
@@ -56,10 +83,10 @@ PointSet Lattice(uint64_t seed) {
   return set;
 }
 
-TEST(NearestSearchGridTest, TiesOnALatticeGoToTheSmallerId) {
+TEST_P(NearestSearchGridTest, TiesOnALatticeGoToTheSmallerId) {
   for (uint64_t seed = 1; seed <= 5; ++seed) {
     const PointSet set = Lattice(seed);
-    const NearestSearchGrid grid(1.0, {0, 0}, set.points, set.ids);
+    const NearestSearchGrid grid(1.0, {0, 0}, set.points, set.ids, GetParam());
     Rng rng(seed);
     int ties = 0;
     for (int k = 0; k < 2000; ++k) {
@@ -76,7 +103,7 @@ TEST(NearestSearchGridTest, TiesOnALatticeGoToTheSmallerId) {
   }
 }
 
-TEST(NearestSearchGridTest, CertifiedAnswersAreExactOnSparseSubsets) {
+TEST_P(NearestSearchGridTest, CertifiedAnswersAreExactOnSparseSubsets) {
   int certified = 0, refused = 0;
   for (uint64_t seed = 1; seed <= 20; ++seed) {
     Rng rng(seed);
@@ -88,7 +115,7 @@ TEST(NearestSearchGridTest, CertifiedAnswersAreExactOnSparseSubsets) {
       set.points.push_back({rng.Uniform(-4, 20), rng.Uniform(-4, 20)});
       set.ids.push_back(rng.NextBits());
     }
-    const NearestSearchGrid grid(1.0, {0, 0}, set.points, set.ids);
+    const NearestSearchGrid grid(1.0, {0, 0}, set.points, set.ids, GetParam());
     for (int k = 0; k < 500; ++k) {
       const Vec2 p{rng.Uniform(-3, 19), rng.Uniform(-3, 19)};
       TwoNearest found;
@@ -110,7 +137,7 @@ TEST(NearestSearchGridTest, CertifiedAnswersAreExactOnSparseSubsets) {
 // equal or a few ulps apart (three ways, so that the second place is
 // contested too), positions exactly on points (squared distance 0), rows of
 // many points, and the smallest and largest d near the precision limit.
-TEST(NearestSearchGridTest, FirstPassIsExactOnNearTiesPointsDenseRowsAndExtremeScales) {
+TEST_P(NearestSearchGridTest, FirstPassIsExactOnNearTiesPointsDenseRowsAndExtremeScales) {
   int certified = 0, ties = 0;
   auto check = [&](const NearestSearchGrid& grid, const PointSet& set, Vec2 p) {
     TwoNearest found;
@@ -147,7 +174,7 @@ TEST(NearestSearchGridTest, FirstPassIsExactOnNearTiesPointsDenseRowsAndExtremeS
       set.points.push_back(q);
     }
     for (size_t k = 0; k < set.points.size(); ++k) set.ids.push_back(rng.NextBits());
-    const NearestSearchGrid grid(scale, key, set.points, set.ids);
+    const NearestSearchGrid grid(scale, key, set.points, set.ids, GetParam());
     check(grid, set, p);
     for (int k = 0; k < 50; ++k) {
       check(grid, set, at(rng.Uniform(0, 16), rng.Uniform(0, 16)));
@@ -160,7 +187,7 @@ TEST(NearestSearchGridTest, FirstPassIsExactOnNearTiesPointsDenseRowsAndExtremeS
 
 // With fewer than two points within reach, or a position whose cells leave
 // the grid, the search must refuse rather than answer.
-TEST(NearestSearchGridTest, RefusesRatherThanAnswerWhenPointsAreMissing) {
+TEST_P(NearestSearchGridTest, RefusesRatherThanAnswerWhenPointsAreMissing) {
   const PointSet set = Lattice(9);
   const Vec2 p{7.2, 7.7};
   PointSet lonely;  // only the one nearest point
@@ -172,8 +199,9 @@ TEST(NearestSearchGridTest, RefusesRatherThanAnswerWhenPointsAreMissing) {
   }
   ASSERT_EQ(lonely.points.size(), 1u);
   TwoNearest found;
-  EXPECT_FALSE(NearestSearchGrid(1.0, {0, 0}, lonely.points, lonely.ids).FindTwoNearest(p, found));
-  EXPECT_FALSE(NearestSearchGrid(1.0, {0, 0}, {}, {}).FindTwoNearest(p, found));
+  EXPECT_FALSE(NearestSearchGrid(1.0, {0, 0}, lonely.points, lonely.ids, GetParam())
+                   .FindTwoNearest(p, found));
+  EXPECT_FALSE(NearestSearchGrid(1.0, {0, 0}, {}, {}, GetParam()).FindTwoNearest(p, found));
   // Positions whose 3x3 block leaves the grid are refused too.
   const NearestSearchGrid full(1.0, {0, 0}, set.points, set.ids);
   EXPECT_FALSE(full.FindTwoNearest({-2.5, 5}, found));

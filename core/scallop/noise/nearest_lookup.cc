@@ -87,8 +87,46 @@ size_t NearestLookup::KeyHash::operator()(const Key& key) const {
                  static_cast<uint64_t>(key.region.j)}));
 }
 
+// Buffers of one call, kept for the next: a batch's worth of them is about
+// 28 bytes a position, and fresh memory for each call cost a page fault
+// every 4 KB (and the clearing of every entry).
+struct NearestLookup::Scratch {
+  struct Sorted {
+    Vec2 position;
+    uint32_t index;  // into the call's positions
+  };
+  std::vector<uint32_t> grid_of;  // the grid of each position
+  std::vector<uint32_t> starts;   // first sorted entry of each grid, then the end
+  std::vector<Sorted> sorted;     // positions by grid; only a prefix is in use
+};
+
+// Scratch kept for reuse: enough for a few concurrent calls of the default
+// batch limit, not a copy of every large batch ever seen.
+constexpr size_t kMaxSpareScratch = 8;
+constexpr size_t kMaxScratchPositions = size_t{1} << 20;
+
 NearestLookup::NearestLookup(PlaneEngine& engine, NearestLookupOptions options)
     : engine_(engine), options_(options) {}
+
+NearestLookup::~NearestLookup() = default;
+
+std::unique_ptr<NearestLookup::Scratch> NearestLookup::TakeScratch() {
+  {
+    std::lock_guard lock(mutex_);
+    if (!spare_scratch_.empty()) {
+      std::unique_ptr<Scratch> scratch = std::move(spare_scratch_.back());
+      spare_scratch_.pop_back();
+      return scratch;
+    }
+  }
+  return std::make_unique<Scratch>();
+}
+
+void NearestLookup::ReturnScratch(std::unique_ptr<Scratch> scratch) {
+  if (scratch->sorted.capacity() > kMaxScratchPositions) return;
+  std::lock_guard lock(mutex_);
+  if (spare_scratch_.size() < kMaxSpareScratch) spare_scratch_.push_back(std::move(scratch));
+}
 
 Status NearestLookup::ValidatePosition(const World& world, Vec2 position, size_t index) {
   const double limit = RegionLayout(world.min_distance).precision_limit();
@@ -122,13 +160,8 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   }
   const World canonical = CanonicalWorld(world);
   int64_t fallbacks = 0;
-  auto answer = [&](size_t k, Vec2 p, const NearestSearchGrid* grid) -> Status {
-    TwoNearest best;
-    if (grid != nullptr && grid->FindTwoNearest(p, best)) {
-      results[k] = FromTwoNearest(best);
-      return Status::Ok();
-    }
-    if (grid != nullptr) ++fallbacks;
+  // The exact answer at p from the engine's points, when no grid certifies one.
+  auto answer_by_brute_force = [&](size_t k, Vec2 p) -> Status {
     StatusOr<TwoNearest> exact = BruteForce(canonical, p);
     if (!exact.ok()) return exact.status();
     results[k] = FromTwoNearest(*exact);
@@ -136,36 +169,47 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   };
   if (options_.method == NearestMethod::kBruteForce) {
     for (size_t k = 0; k < positions.size(); ++k) {
-      if (Status status = answer(k, positions[k], nullptr); !status.ok()) return status;
+      if (Status status = answer_by_brute_force(k, positions[k]); !status.ok()) return status;
     }
   } else {
+    std::unique_ptr<Scratch> scratch = TakeScratch();
     std::vector<GridHandle> grids;
-    std::vector<uint32_t> grid_of;
-    if (Status status = AssignGrids(canonical, positions, grids, grid_of); !status.ok()) {
+    if (Status status = AssignGrids(canonical, positions, grids, scratch->grid_of); !status.ok()) {
       return status;
     }
     // Positions grouped by grid (a counting sort, stable), so each grid is
-    // read from memory once per batch rather than once per position.
-    std::vector<uint32_t> starts(grids.size() + 1, 0);
-    for (uint32_t g : grid_of) ++starts[g + 1];
-    for (size_t g = 0; g < grids.size(); ++g) starts[g + 1] += starts[g];
-    // The positions are copied in that order too: reading them through the
+    // read from memory once per batch rather than once per position. The
+    // positions are copied in that order: reading them through the
     // permutation would miss the cache on every one.
-    struct Sorted {
-      Vec2 position;
-      uint32_t index;
-      uint32_t grid;
-    };
-    std::vector<Sorted> sorted(positions.size());
+    // (Plain pointers: through the vectors GCC reloaded them on every entry.)
+    const uint32_t* grid_of = scratch->grid_of.data();
+    std::vector<uint32_t>& starts = scratch->starts;
+    starts.assign(grids.size() + 1, 0);
+    for (size_t k = 0; k < positions.size(); ++k) ++starts[grid_of[k] + 1];
+    for (size_t g = 0; g < grids.size(); ++g) starts[g + 1] += starts[g];
+    if (scratch->sorted.size() < positions.size()) scratch->sorted.resize(positions.size());
+    Scratch::Sorted* sorted = scratch->sorted.data();
+    std::vector<uint32_t> next_vector(starts.begin(), starts.end() - 1);
+    uint32_t* next = next_vector.data();
     for (size_t k = 0; k < positions.size(); ++k) {
-      sorted[starts[grid_of[k]]++] = {positions[k], static_cast<uint32_t>(k), grid_of[k]};
+      sorted[next[grid_of[k]]++] = {positions[k], static_cast<uint32_t>(k)};
     }
-    for (const Sorted& entry : sorted) {
-      if (Status status = answer(entry.index, entry.position, grids[entry.grid].get());
-          !status.ok()) {
-        return status;
+    for (size_t g = 0; g < grids.size(); ++g) {
+      const NearestSearchGrid& grid = *grids[g];
+      for (uint32_t j = starts[g]; j < starts[g + 1]; ++j) {
+        TwoNearest best;
+        if (grid.FindTwoNearest(sorted[j].position, best)) {
+          results[sorted[j].index] = FromTwoNearest(best);
+          continue;
+        }
+        ++fallbacks;
+        if (Status status = answer_by_brute_force(sorted[j].index, sorted[j].position);
+            !status.ok()) {
+          return status;
+        }
       }
     }
+    ReturnScratch(std::move(scratch));
   }
   std::lock_guard lock(mutex_);
   stats_.lookups += static_cast<int64_t>(positions.size());
@@ -210,7 +254,7 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
     index = slot->grid;
     return Status::Ok();
   };
-  grid_of.resize(positions.size());
+  if (grid_of.size() < positions.size()) grid_of.resize(positions.size());
   // Coherent batches (images, paths) skip the lookup while they stay in one
   // region.
   RegionKey current_key;

@@ -54,6 +54,7 @@ class NearestLookup {
  public:
   // `engine` must outlive the lookup; its region cache supplies the points.
   explicit NearestLookup(PlaneEngine& engine, NearestLookupOptions options = {});
+  ~NearestLookup();
   NearestLookup(const NearestLookup&) = delete;
   NearestLookup& operator=(const NearestLookup&) = delete;
 
@@ -66,7 +67,8 @@ class NearestLookup {
   // machine (image order to random order, docs/performance.md), plus a
   // mutex and a hash lookup per region a batch visits. A missing grid costs
   // one PlaneEngine::Points query of 24 d x 24 d, plus generation when cold.
-  // Memory: about 28 bytes a position besides `results`, to group by region.
+  // Memory: about 28 bytes a position besides `results`, to group by region;
+  // kept for later calls (up to 8 calls' worth, batches up to 2^20).
   Status Nearest(const World& world, std::span<const Vec2> positions,
                  std::span<NearestPoint> results);
 
@@ -90,7 +92,12 @@ class NearestLookup {
     std::list<Key>::iterator lru;
   };
 
-  // The grid each position is answered by: grids[grid_of[k]] for position k.
+  struct Scratch;  // per-call buffers (.cc)
+  std::unique_ptr<Scratch> TakeScratch();
+  void ReturnScratch(std::unique_ptr<Scratch> scratch);
+
+  // The grid each position is answered by: grids[grid_of[k]] for position k
+  // (grid_of may be longer than positions; the rest is unspecified).
   Status AssignGrids(const World& world, std::span<const Vec2> positions,
                      std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of);
   // The grid of `region`, from the cache or built (outside the mutex: two
@@ -105,6 +112,7 @@ class NearestLookup {
   std::unordered_map<Key, Entry, KeyHash> grids_;  // looked up only: order never reaches output
   std::list<Key> lru_;                             // front: most recently used
   NearestLookupStats stats_;
+  std::vector<std::unique_ptr<Scratch>> spare_scratch_;
 };
 
 }  // namespace scallop

@@ -41,46 +41,50 @@ constexpr uint32_t kRunPad = kRunPoints;
 constexpr double kPadCoordinate = 0x1.0p+509;
 
 // Keys kLanes at a time, one per lane of a GCC and Clang vector extension:
-// an SSE2 register holds two, an AVX one four. Each lane sees the IEEE
+// two in an SSE2 register, four in an AVX one. Each lane sees the IEEE
 // operations scalar code would, in the same order, so it gets the same bits.
 // Passing them by value has no fixed ABI without AVX, hence GCC's -Wpsabi
-// note; they never cross this file, so the note is silenced here.
+// note; they never leave this file's inlined code, so it is silenced here.
 #pragma GCC diagnostic ignored "-Wpsabi"
-#ifdef __AVX__
-constexpr int kLanes = 4;
-using Keys = double __attribute__((vector_size(32)));
-using KeyBits = uint64_t __attribute__((vector_size(32)));
-constexpr KeyBits kLaneIndex = {0, 1, 2, 3};
-#else
-constexpr int kLanes = 2;
-using Keys = double __attribute__((vector_size(16)));
-using KeyBits = uint64_t __attribute__((vector_size(16)));
-constexpr KeyBits kLaneIndex = {0, 1};
-#endif
-static_assert(kRunPoints % kLanes == 0);
-using Pair = double __attribute__((vector_size(16)));
-static_assert(sizeof(Pair) == sizeof(Vec2));
+template <int kLanes>
+struct LaneTypes;
+template <>
+struct LaneTypes<2> {
+  using Keys = double __attribute__((vector_size(16)));
+  using Bits = uint64_t __attribute__((vector_size(16)));
+  static constexpr Bits kIndex = {0, 1};
+};
+template <>
+struct LaneTypes<4> {
+  using Keys = double __attribute__((vector_size(32)));
+  using Bits = uint64_t __attribute__((vector_size(32)));
+  static constexpr Bits kIndex = {0, 1, 2, 3};
+};
 
-// Non-negative finite doubles order as their bits do, and `a < b ? a : b`
-// is minpd: the keys are ranked as doubles, without branching on the data.
-inline Keys Min(Keys a, Keys b) { return a < b ? a : b; }
-inline Keys Max(Keys a, Keys b) { return a > b ? a : b; }
+// Everything below is inlined into its caller, whatever the caller's target:
+// the four-lane code then compiles to AVX inside the AVX2 entry point only.
+#define SCALLOP_INLINE [[gnu::always_inline]] inline
 
-inline Keys Broadcast(double value) {
-  Keys keys;
+template <int kLanes>
+SCALLOP_INLINE typename LaneTypes<kLanes>::Keys Broadcast(double value) {
+  typename LaneTypes<kLanes>::Keys keys;
   for (int lane = 0; lane < kLanes; ++lane) keys[lane] = value;
   return keys;
 }
 
-// The three smallest keys offered to each lane, in order. Every operation
-// is a min or max of two variables: with a constant operand GCC 12 built
-// compare-and-blend sequences instead of minpd/maxpd.
+// The three smallest keys offered to each lane, in order. Non-negative
+// finite doubles order as their bits do, and `a < b ? a : b` is minpd: keys
+// are ranked as doubles, without branching on the data. Every min and max
+// takes two variables: with a constant operand GCC 12 built compare-and-blend
+// sequences instead.
+template <int kLanes>
 struct SmallestKeys {
+  using Keys = typename LaneTypes<kLanes>::Keys;
   Keys first, second, third;
 
-  SmallestKeys(Keys a, Keys b, Keys c) { Sort(a, b, c); }
+  SCALLOP_INLINE SmallestKeys(Keys a, Keys b, Keys c) { Sort(a, b, c); }
 
-  void Offer(Keys keys) {
+  SCALLOP_INLINE void Offer(Keys keys) {
     const Keys high1 = Max(first, keys);
     first = Min(first, keys);
     const Keys high2 = Max(second, high1);
@@ -89,13 +93,15 @@ struct SmallestKeys {
   }
 
   // Lane 0 gets the three smallest of all lanes.
-  void MergeAllLanes() {
-    MergeLanes<1>();
-    if constexpr (kLanes == 4) MergeLanes<2>();
+  SCALLOP_INLINE void MergeAllLanes() {
+    for (int swap = 1; swap < kLanes; swap *= 2) MergeLanes(swap);
   }
 
  private:
-  void Sort(Keys a, Keys b, Keys c) {
+  SCALLOP_INLINE static Keys Min(Keys a, Keys b) { return a < b ? a : b; }
+  SCALLOP_INLINE static Keys Max(Keys a, Keys b) { return a > b ? a : b; }
+
+  SCALLOP_INLINE void Sort(Keys a, Keys b, Keys c) {
     const Keys low = Min(a, b), high = Max(a, b);
     first = Min(low, c);
     const Keys rest = Max(low, c);
@@ -106,13 +112,24 @@ struct SmallestKeys {
   // Each lane gets the three smallest of its own and of lane `lane ^ swap`'s:
   // with both sorted, the lane-wise minima of one and the other reversed are
   // the three smallest of the six (a bitonic half-cleaner).
-  template <int kSwap>
-  void MergeLanes() {
-    constexpr KeyBits swap = kLaneIndex ^ kSwap;
-    Sort(Min(first, __builtin_shuffle(third, swap)), Min(second, __builtin_shuffle(second, swap)),
-         Min(third, __builtin_shuffle(first, swap)));
+  SCALLOP_INLINE void MergeLanes(int swap) {
+    const auto partner = LaneTypes<kLanes>::kIndex ^ static_cast<uint64_t>(swap);
+    Sort(Min(first, __builtin_shuffle(third, partner)),
+         Min(second, __builtin_shuffle(second, partner)),
+         Min(third, __builtin_shuffle(first, partner)));
   }
 };
+
+using Pair = double __attribute__((vector_size(16)));
+static_assert(sizeof(Pair) == sizeof(Vec2));
+
+bool CpuHasAvx2() {
+#if defined(__x86_64__) || defined(__i386__)
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
 
 }  // namespace
 
@@ -123,11 +140,13 @@ Rect NearestSearchGrid::CoveredSquare(double min_distance, RegionKey key) {
 }
 
 NearestSearchGrid::NearestSearchGrid(double min_distance, RegionKey key,
-                                     std::span<const Vec2> points, std::span<const uint64_t> ids)
+                                     std::span<const Vec2> points, std::span<const uint64_t> ids,
+                                     FirstPassWidth width)
     : key_(key),
       cell_(min_distance),
       inverse_cell_(1.0 / min_distance),
-      slack_(kSlackInD * min_distance) {
+      slack_(kSlackInD * min_distance),
+      four_lanes_(width == FirstPassWidth::kWidest && FourLanesAvailable()) {
   const Rect region = RegionLayout(min_distance).RegionRect(key);
   origin_ = {region.x0 - kMarginCells * min_distance, region.y0 - kMarginCells * min_distance};
   // Counting sort by cell, row-major. -1 marks a point outside the grid.
@@ -171,21 +190,25 @@ void NearestSearchGrid::ScanRow(int row, int first, int last, const Vec2& p,
   }
 }
 
-inline bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy, double radius1,
-                                                  TwoNearest& best) const {
+template <int kLanes>
+SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy,
+                                                          double radius1, TwoNearest& best) const {
+  using Keys = typename LaneTypes<kLanes>::Keys;
+  using Bits = typename LaneTypes<kLanes>::Bits;
+  static_assert(kRunPoints % kLanes == 0);
   // Examines every point of p's 3x3 block, and some beyond it (later cells
   // of a row, the far pads, possibly a point twice): extra points are real,
   // or farther than any block reaches, so they cannot make a wrong answer
   // look right.
-  const Keys px = Broadcast(p.x), py = Broadcast(p.y);
+  const Keys px = Broadcast<kLanes>(p.x), py = Broadcast<kLanes>(p.y);
   // The keys of points first .. first + kLanes - 1.
   auto keys_from = [&](uint32_t first) {
     Keys x, y;
     std::memcpy(&x, xs_.data() + first, sizeof(x));
     std::memcpy(&y, ys_.data() + first, sizeof(y));
     const Keys dx = px - x, dy = py - y;  // SquaredDistanceFrom's order
-    const auto bits = reinterpret_cast<KeyBits>(dx * dx + dy * dy);
-    return reinterpret_cast<Keys>((bits & ~kIndexMask) | (first + kLaneIndex));
+    const auto bits = reinterpret_cast<Bits>(dx * dx + dy * dy);
+    return reinterpret_cast<Keys>((bits & ~kIndexMask) | (first + LaneTypes<kLanes>::kIndex));
   };
   uint32_t first[3], end[3];
   for (int r = 0; r < 3; ++r) {
@@ -199,7 +222,7 @@ inline bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy,
   for (int v = 0; v < kVectors; ++v) {
     fixed[v] = keys_from(first[v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
   }
-  SmallestKeys keys(fixed[0], fixed[1], fixed[2]);
+  SmallestKeys<kLanes> keys(fixed[0], fixed[1], fixed[2]);
   for (int v = 3; v < kVectors; ++v) keys.Offer(fixed[v]);
   for (int r = 0; r < 3; ++r) {
     for (uint32_t k = first[r] + kRunPoints; k < end[r]; k += kLanes) keys.Offer(keys_from(k));
@@ -232,6 +255,28 @@ inline bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy,
   return true;
 }
 
+bool NearestSearchGrid::FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1,
+                                              TwoNearest& best) const {
+  return FindInBlockQuickly<2>(p, cx, cy, radius1, best);
+}
+
+#if defined(__x86_64__) || defined(__i386__)
+__attribute__((target("avx2"))) bool NearestSearchGrid::FindInBlockInFourLanes(
+    const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const {
+  return FindInBlockQuickly<4>(p, cx, cy, radius1, best);
+}
+#else
+bool NearestSearchGrid::FindInBlockInFourLanes(const Vec2& p, int cx, int cy, double radius1,
+                                               TwoNearest& best) const {
+  return FindInBlockQuickly<2>(p, cx, cy, radius1, best);
+}
+#endif
+
+bool NearestSearchGrid::FourLanesAvailable() {
+  static const bool available = CpuHasAvx2();
+  return available;
+}
+
 double NearestSearchGrid::Covered(double gx, double gy, int x_lo, int x_hi, int y_lo,
                                   int y_hi) const {
   return std::min({gx - x_lo, x_hi + 1 - gx, gy - y_lo, y_hi + 1 - gy}) * cell_ - slack_;
@@ -245,7 +290,10 @@ bool NearestSearchGrid::FindTwoNearest(const Vec2& p, TwoNearest& best) const {
   if (quick_) {
     const int cx = static_cast<int>(gx), cy = static_cast<int>(gy);  // floor: both >= 1
     const double radius1 = Covered(gx, gy, cx - 1, cx + 1, cy - 1, cy + 1);
-    if (FindInBlockQuickly(p, cx, cy, radius1, best)) return true;
+    if (four_lanes_ ? FindInBlockInFourLanes(p, cx, cy, radius1, best)
+                    : FindInBlockInTwoLanes(p, cx, cy, radius1, best)) {
+      return true;
+    }
   }
   return FindTwoNearestExactly(p, gx, gy, best);
 }

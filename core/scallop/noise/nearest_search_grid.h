@@ -52,6 +52,11 @@ inline void OfferCandidate(double squared, uint64_t id, Vec2 q, TwoNearest& best
 
 class NearestSearchGrid {
  public:
+  // The vector width of the search's first pass. Both widths give the same
+  // answers to the bit; kWidest takes four lanes (AVX2) where the CPU has
+  // them, else two (SSE2). The tests run each.
+  enum class FirstPassWidth { kWidest, kTwoLanes };
+
   // Cells of margin on each side of the region: F2 < 2 d (1 + tolerance) on
   // a maximal set, and a position in the region is at most 1 cell from the
   // margin's inner edge, so 3 cells always hold the answer (docs/noise.md).
@@ -69,7 +74,12 @@ class NearestSearchGrid {
   // valid (world.h), ids.size() == points.size(), ids distinct.
   // Cost: O(points); about 12 KB for an A3 region.
   NearestSearchGrid(double min_distance, RegionKey key, std::span<const Vec2> points,
-                    std::span<const uint64_t> ids);
+                    std::span<const uint64_t> ids, FirstPassWidth width = FirstPassWidth::kWidest);
+
+  // Whether this CPU runs the four-lane first pass (x86 with AVX2).
+  static bool FourLanesAvailable();
+  // The lanes this grid's first pass uses: 2 or 4.
+  int FirstPassLanes() const { return four_lanes_ ? 4 : 2; }
 
   // The two nearest of the grid's points to p, in `best`. Returns true only
   // when the answer is certified: every point within the second distance of p
@@ -100,9 +110,15 @@ class NearestSearchGrid {
   double Covered(double gx, double gy, int x_lo, int x_hi, int y_lo, int y_hi) const;
   // Phases 1 and 2 with OfferCandidate: exact whatever the ties.
   bool FindTwoNearestExactly(const Vec2& p, double gx, double gy, TwoNearest& best) const;
-  // Phase 1 without branches on the data, for when its answer is certified
-  // and free of near-ties; false sends the caller to the exact scan.
+  // Phase 1 without branches on the data, kLanes keys at a time, for when
+  // its answer is certified and free of near-ties; false sends the caller to
+  // the exact scan. Inlined into the two entry points below, the second
+  // compiled for AVX2.
+  template <int kLanes>
   bool FindInBlockQuickly(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
+  bool FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
+  bool FindInBlockInFourLanes(const Vec2& p, int cx, int cy, double radius1,
+                              TwoNearest& best) const;
 
   RegionKey key_;
   double cell_ = 0;          // cell side, d
@@ -117,6 +133,7 @@ class NearestSearchGrid {
   std::vector<double> xs_, ys_;
   std::vector<uint64_t> ids_;  // ids_[k] is the id of point k
   bool quick_ = false;         // point indices fit FindInBlockQuickly's keys
+  bool four_lanes_ = false;    // FindInBlockInFourLanes, not ...TwoLanes
 };
 
 }  // namespace scallop
