@@ -4,6 +4,7 @@
 // See docs/noise.md for the argument.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -135,5 +136,28 @@ class NearestSearchGrid {
   bool quick_ = false;         // point indices fit FindInBlockQuickly's keys
   bool four_lanes_ = false;    // FindInBlockInFourLanes, not ...TwoLanes
 };
+
+// Inline: one call per position, and a call kept `best` in memory between
+// the search and its caller.
+inline bool NearestSearchGrid::FindTwoNearest(const Vec2& p, TwoNearest& best) const {
+  const double gx = (p.x - origin_.x) * inverse_cell_;
+  const double gy = (p.y - origin_.y) * inverse_cell_;
+  // p's 3x3 block must lie in the grid (this also rejects NaN).
+  if (!(gx >= 1 && gx < kCellsPerSide - 1 && gy >= 1 && gy < kCellsPerSide - 1)) return false;
+  if (quick_) {
+    const int cx = static_cast<int>(gx), cy = static_cast<int>(gy);  // floor: both >= 1
+    const double radius1 = Covered(gx, gy, cx - 1, cx + 1, cy - 1, cy + 1);
+    if (four_lanes_ ? FindInBlockInFourLanes(p, cx, cy, radius1, best)
+                    : FindInBlockInTwoLanes(p, cx, cy, radius1, best)) {
+      return true;
+    }
+  }
+  return FindTwoNearestExactly(p, gx, gy, best);
+}
+
+inline double NearestSearchGrid::Covered(double gx, double gy, int x_lo, int x_hi, int y_lo,
+                                         int y_hi) const {
+  return std::min({gx - x_lo, x_hi + 1 - gx, gy - y_lo, y_hi + 1 - gy}) * cell_ - slack_;
+}
 
 }  // namespace scallop
