@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "scallop/noise/nearest_lookup.h"
+#include "scallop/noise/noise_grid.h"
 #include "scallop/random/rng.h"
 
 namespace scallop {
@@ -134,6 +135,27 @@ void BM_NearestWarm(benchmark::State& state) {
       static_cast<double>(stats.bytes) / static_cast<double>(stats.grids_cached);
 }
 BENCHMARK(BM_NearestWarm)->ArgName("image_order")->Arg(0)->Arg(1);
+
+// The same 256 x 256 image through EvaluateNoiseGrid (what the NoiseGrid RPC
+// and `scallop noise` run): lookups plus building the image of one channel.
+void BM_NoiseGridWarm(benchmark::State& state) {
+  PlaneEngine engine({.threads = 2});
+  NearestLookup lookup(engine);
+  const World world{.seed = 7};
+  const NoiseGridSpec spec{.origin = {0, 0},
+                           .step = kAreaSide / 256,
+                           .width = 256,
+                           .height = 256,
+                           .channel = NoiseChannel::kF1};
+  if (!EvaluateNoiseGrid(lookup, world, spec, kBatch).ok()) state.SkipWithError("grid failed");
+  for (auto _ : state) {
+    StatusOr<NoiseImage> image = EvaluateNoiseGrid(lookup, world, spec, kBatch);
+    if (!image.ok()) state.SkipWithError("grid failed");
+    benchmark::DoNotOptimize(image->values.data());
+  }
+  SetLookupsPerSecond(state);
+}
+BENCHMARK(BM_NoiseGridWarm);
 
 }  // namespace
 }  // namespace scallop

@@ -50,7 +50,8 @@ struct NoiseImage {
 Status ValidateNoiseGrid(const World& world, const NoiseGridSpec& spec, int64_t max_samples);
 
 // The channel at every sample. Cost: that of NearestLookup::Nearest on
-// width * height positions, one row at a time (memory: the image plus a row).
+// width * height positions, in batches of whole rows of up to 65,536 samples
+// (memory: the image plus about 100 bytes a sample of one batch).
 StatusOr<NoiseImage> EvaluateNoiseGrid(NearestLookup& lookup, const World& world,
                                        const NoiseGridSpec& spec, int64_t max_samples);
 
