@@ -6,6 +6,10 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "scallop/sampling/available_boundary.h"
 #include "scallop/sampling/boundary_grid.h"
 #include "scallop/sampling/point_grid.h"
@@ -38,6 +42,17 @@ void ClipToRectangle(const Rect& rect, Vec2 centre, double radius, AvailableBoun
   }
 }
 
+// {sqrt(t[0]), sqrt(t[1])}: one packed square root where SSE2 has it (the
+// same correctly rounded bits), where std::sqrt gave two, each behind a
+// branch that keeps errno for negative inputs (t >= 0 here).
+Doubles SquareRoots(Doubles t) {
+#if defined(__SSE2__)
+  return _mm_sqrt_pd(t);
+#else
+  return Doubles{std::sqrt(t[0]), std::sqrt(t[1])};
+#endif
+}
+
 // The arc of the candidate's circle (radius s) that the disk of radius s
 // about a neighbour at `offset` (|offset| < 2 s) covers.
 struct Arc {
@@ -54,7 +69,7 @@ void CoveredArcs(Vec2 offset0, Vec2 offset1, double spacing_squared, Arc* arcs) 
   const Doubles x = {offset0.x, offset1.x}, y = {offset0.y, offset1.y};
   const Doubles four_s2 = {4 * spacing_squared, 4 * spacing_squared};
   const Doubles t = four_s2 / (x * x + y * y) - 1.0;
-  const Doubles k = {std::sqrt(t[0]), std::sqrt(t[1])};
+  const Doubles k = SquareRoots(t);
   // o' = (-y, x); from = o - k o', to = o + k o'.
   const Doubles from_x = x - k * -y, from_y = y - k * x;
   const Doubles to_x = x + k * -y, to_y = y + k * x;
