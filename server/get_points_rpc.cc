@@ -59,21 +59,17 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
   } else {
     return std::nullopt;
   }
-  // Straight into the packed arrays, reserved for the page: one copy.
+  // Straight into the packed arrays, with room for the page: one copy.
   size_t upper_bound = 0;
   for (const RegionHandle& region : regions) upper_bound += region->points.size();
-  const int reserve = static_cast<int>(std::min(upper_bound, page_size));
   v1::Points& points = *response.mutable_points();
-  points.mutable_xs()->Reserve(reserve);
-  points.mutable_ys()->Reserve(reserve);
-  points.mutable_ids()->Reserve(reserve);
   const size_t end = offset + page_size;
-  const size_t total = VisitPoints(regions, RegionLayout(world.min_distance), rect, offset, end,
-                                   [&](const Vec2& position, uint64_t id) {
-                                     points.add_xs(position.x);
-                                     points.add_ys(position.y);
-                                     points.add_ids(id);
-                                   });
+  size_t total = 0;
+  {
+    PointsAppender appender(points, std::min(upper_bound, page_size));
+    total = VisitPoints(regions, RegionLayout(world.min_distance), rect, offset, end,
+                        [&](const Vec2& position, uint64_t id) { appender.Append(position, id); });
+  }
   if (offset > total) {
     response.clear_points();
     return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,

@@ -67,14 +67,26 @@ v1::Rect RectToMessage(const Rect& rect) {
 }
 
 void AppendPoints(const PlanePoints& points, size_t begin, size_t end, v1::Points& message) {
-  message.mutable_xs()->Reserve(message.xs_size() + static_cast<int>(end - begin));
-  message.mutable_ys()->Reserve(message.ys_size() + static_cast<int>(end - begin));
-  message.mutable_ids()->Reserve(message.ids_size() + static_cast<int>(end - begin));
-  for (size_t k = begin; k < end; ++k) {
-    message.add_xs(points.positions[k].x);
-    message.add_ys(points.positions[k].y);
-    message.add_ids(points.ids[k]);
-  }
+  PointsAppender appender(message, end - begin);
+  for (size_t k = begin; k < end; ++k) appender.Append(points.positions[k], points.ids[k]);
+}
+
+PointsAppender::PointsAppender(v1::Points& message, size_t capacity)
+    : message_(message), start_(message.ids_size()) {
+  const int room = static_cast<int>(capacity);
+  message.mutable_xs()->Reserve(start_ + room);
+  message.mutable_ys()->Reserve(start_ + room);
+  message.mutable_ids()->Reserve(start_ + room);
+  xs_ = message.mutable_xs()->AddNAlreadyReserved(room);
+  ys_ = message.mutable_ys()->AddNAlreadyReserved(room);
+  ids_ = message.mutable_ids()->AddNAlreadyReserved(room);
+}
+
+PointsAppender::~PointsAppender() {
+  const int size = start_ + static_cast<int>(count_);
+  message_.mutable_xs()->Truncate(size);
+  message_.mutable_ys()->Truncate(size);
+  message_.mutable_ids()->Truncate(size);
 }
 
 Status ReadPoints(const v1::Points& message, PlanePoints& points) {
