@@ -1,14 +1,17 @@
 // AvailableBoundary: the part of a circle (a set of disjoint angular ranges)
 // where boundary sampling (A3) may still place a point.
 //
-// It is built in two phases. While the neighbours' arcs are removed, ranges
-// are keyed by a pseudo-angle: a monotone rational function of the direction
-// (no trigonometry, exact to rounding), with each end's direction kept. Then
-// Finish() turns the few surviving ends into true angles, in which points are
-// drawn uniformly and each placed point's arc is removed.
+// Ranges are keyed by a pseudo-angle: a monotone rational function of the
+// direction, exact to rounding and free of trigonometry. Removing an arc
+// takes the keys of its two end directions; a point is drawn uniformly by
+// angle by drawing a key uniformly and correcting the density by rejection.
+// No sine, cosine or arctangent is evaluated, so A3's bits rest on IEEE
+// +, -, *, / and sqrt alone.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "scallop/geometry/vec2.h"
@@ -16,7 +19,6 @@
 
 namespace scallop {
 
-inline constexpr double kTwoPi = 6.283185307179586476925286766559;
 inline constexpr double kFullTurnKey = 4.0;  // the pseudo-angle of a whole turn
 
 // The "diamond angle" of a non-zero direction: 0 along +x, 1 along +y, 2
@@ -24,6 +26,19 @@ inline constexpr double kFullTurnKey = 4.0;  // the pseudo-angle of a whole turn
 inline double PseudoAngle(Vec2 v) {
   if (v.y >= 0) return v.x >= 0 ? v.y / (v.x + v.y) : 1 - v.x / (v.y - v.x);
   return v.x < 0 ? 2 - v.y / (-v.x - v.y) : 3 + v.x / (v.x - v.y);
+}
+
+// A direction whose PseudoAngle is `key` (to rounding), for key in [0, 4]:
+// in quadrant n = floor(key) it is (1 - q, q), q = key - n, turned by n right
+// angles, so |x| + |y| = 1. Without a branch on the quadrant (a drawn key's
+// quadrant cannot be predicted).
+inline Vec2 DirectionAtKey(double key) {
+  constexpr double kSignOfX[5] = {1, -1, -1, 1, 1}, kSignOfY[5] = {1, 1, -1, -1, 1};
+  const auto quadrant = static_cast<int>(key);  // key >= 0: truncation is floor
+  const double q = key - quadrant;              // exact
+  const double parts[2] = {1.0 - q, q};
+  const int odd = quadrant & 1;  // odd quadrants swap the parts
+  return {kSignOfX[quadrant] * parts[odd], kSignOfY[quadrant] * parts[odd ^ 1]};
 }
 
 // Two lanes of doubles, or of their bits, in one SSE2 register (a GCC and
@@ -61,87 +76,80 @@ inline Doubles PseudoAngles(Doubles x, Doubles y) {
 class AvailableBoundary {
  public:
   struct Range {
-    double begin, end;  // begin < end; pseudo-angles before Finish(), radians after
-    Vec2 begin_direction, end_direction;  // used before Finish() only
+    double begin, end;  // pseudo-angles, begin < end
   };
 
-  // The whole circle, in the pseudo-angle phase. O(1); keeps capacity.
-  void Reset();
-
-  bool empty() const { return ranges_.empty(); }
-  const std::vector<Range>& ranges() const { return ranges_; }
-
-  // Pseudo-angle phase: removes the arc that runs counterclockwise from
-  // direction `from` to direction `to` (both non-zero). O(ranges).
-  void SubtractArc(Vec2 from, Vec2 to) {
-    SubtractArc(PseudoAngle(from), PseudoAngle(to), from, to);
+  // The whole circle. O(1); keeps capacity.
+  void Reset() {
+    ranges_[0] = {0.0, kFullTurnKey};
+    count_ = 1;
   }
+
+  bool empty() const { return count_ == 0; }
+  std::span<const Range> ranges() const { return {ranges_.data(), count_}; }
+
+  // Removes the closed arc that runs counterclockwise from direction `from`
+  // to direction `to` (both non-zero). O(ranges).
+  void SubtractArc(Vec2 from, Vec2 to) { SubtractArc(PseudoAngle(from), PseudoAngle(to)); }
   // The same, given PseudoAngle(from) and PseudoAngle(to) (or values equal to them).
-  void SubtractArc(double from_key, double to_key, Vec2 from, Vec2 to);
+  void SubtractArc(double from_key, double to_key);
   // Removes everything.
-  void Clear() { ranges_.clear(); }
+  void Clear() { count_ = 0; }
 
-  // Ends the pseudo-angle phase: ranges become radians in [0, 2 pi], one
-  // atan2 per surviving end. Ranges that rounding made empty are dropped.
-  void Finish();
-
-  // Radian phase: removes the closed arc of angles within `half_width` of
-  // `centre` (any real centre; half_width >= pi clears the circle). O(ranges).
-  void Subtract(double centre, double half_width);
-
-  // Radian phase: total length, and a uniformly distributed available angle
-  // (REQUIRES: !empty()). O(ranges).
-  double TotalLength() const;
-  double SampleAngle(Rng& rng) const;
+  // A direction drawn uniformly by angle from the available part, with its
+  // key; |direction.x| + |direction.y| = 1. REQUIRES: !empty(). O(ranges)
+  // per try, 4 / pi tries on average: a key drawn uniformly has angle
+  // density |direction|^2 (between 1/2 and 1, the key's rate of change), so
+  // it is kept with probability 1 / (2 |direction|^2).
+  struct Draw {
+    Vec2 direction;
+    double key;
+  };
+  Draw SampleDirection(Rng& rng) const;
 
  private:
-  // Removes [begin, end] (keys of the current phase) with the given end
-  // directions for the pieces it cuts.
-  void SubtractKeys(double begin, double end, Vec2 begin_direction, Vec2 end_direction);
-  std::vector<Range> ranges_;
+  // Removes the closed key interval [begin, end], 0 <= begin <= end <= 4.
+  void SubtractKeys(double begin, double end);
+  // A key drawn uniformly from the ranges.
+  double SampleKey(Rng& rng) const;
+  // Room for `count` ranges in both buffers. Rare: the sizes only grow.
+  [[gnu::noinline]] void Grow(size_t count);
+
+  // ranges_[0, count_): sorted and disjoint. A cut writes its result into
+  // spare_ and swaps; both hold at least count_ + 2 ranges.
+  std::vector<Range> ranges_ = std::vector<Range>(8), spare_ = std::vector<Range>(8);
+  size_t count_ = 0;
 };
 
-// Inline: they run for every neighbour of every candidate, and a call's
-// overhead (four directions passed, registers saved) was a third of their cost.
-inline void AvailableBoundary::SubtractArc(double begin, double end, Vec2 from, Vec2 to) {
+// Inline: it runs for every neighbour of every candidate, and a call's
+// overhead was a third of its cost.
+inline void AvailableBoundary::SubtractArc(double begin, double end) {
   if (begin <= end) {
-    SubtractKeys(begin, end, from, to);
+    SubtractKeys(begin, end);
   } else {
-    SubtractKeys(begin, kFullTurnKey, from, {1, 0});
-    SubtractKeys(0.0, end, {1, 0}, to);
+    SubtractKeys(begin, kFullTurnKey);
+    SubtractKeys(0.0, end);
   }
 }
 
-inline void AvailableBoundary::SubtractKeys(double begin, double end, Vec2 begin_direction,
-                                            Vec2 end_direction) {
-  // In place: most cuts touch one range, so copying every range would
-  // dominate. Ranges are sorted and disjoint.
-  const size_t count = ranges_.size();
-  size_t first = 0;
-  while (first < count && ranges_[first].end <= begin) ++first;
-  if (first == count || ranges_[first].begin >= end) return;
-  Range& cut = ranges_[first];
-  if (cut.begin < begin && cut.end > end) {  // the cut falls inside one range: split it
-    const Range right{end, cut.end, end_direction, cut.end_direction};
-    cut.end = begin;
-    cut.end_direction = begin_direction;
-    ranges_.insert(ranges_.begin() + static_cast<std::ptrdiff_t>(first) + 1, right);
-    return;
+inline void AvailableBoundary::SubtractKeys(double begin, double end) {
+  // Removing [begin, end] from a range (b, e), b < e, leaves (b, min(e, begin))
+  // when b < begin and (max(b, end), e) when end < e. Every range is cut so,
+  // with no branch on how the cut meets it: cuts fall anywhere, and those
+  // branches were A3's costliest mispredictions. Both pieces are written;
+  // the count moves past the non-empty ones (at most one more than before).
+  if (spare_.size() < count_ + 2) Grow(count_ + 2);
+  Range* out = spare_.data();
+  size_t kept = 0;
+  for (size_t r = 0; r < count_; ++r) {
+    const Range range = ranges_[r];
+    out[kept] = {range.begin, std::min(range.end, begin)};
+    kept += range.begin < begin;
+    out[kept] = {std::max(range.begin, end), range.end};
+    kept += end < range.end;
   }
-  size_t erase_from = first;
-  if (cut.begin < begin) {  // keep the head of the first range
-    cut.end = begin;
-    cut.end_direction = begin_direction;
-    ++erase_from;
-  }
-  size_t last = erase_from;  // ranges wholly inside the cut end before `last`
-  while (last < count && ranges_[last].end <= end) ++last;
-  if (last < count && ranges_[last].begin < end) {  // trim the tail range
-    ranges_[last].begin = end;
-    ranges_[last].begin_direction = end_direction;
-  }
-  ranges_.erase(ranges_.begin() + static_cast<std::ptrdiff_t>(erase_from),
-                ranges_.begin() + static_cast<std::ptrdiff_t>(last));
+  ranges_.swap(spare_);
+  count_ = kept;
 }
 
 }  // namespace scallop

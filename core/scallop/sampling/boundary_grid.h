@@ -119,10 +119,22 @@ class BoundaryGrid {
       occupied |= (OccupancyFrom(c0, r) & row_mask) << (8 * (r - r0));
     }
     if (self >= 0) occupied &= ~(uint64_t{1} << (8 * (own_row - r0) + (own_column - c0)));
+    // Where the block's row k and column j start, as cell offsets from cell
+    // (c0, r0): looked up per occupied cell, which beat computing the tile.
+    size_t row_offsets[kTile], column_offsets[kTile];
+    const auto tile_row_cells = static_cast<size_t>(tile_columns_ * kTile * kTile);
+    for (int64_t k = 0; k < kTile; ++k) {
+      const auto r = static_cast<size_t>(r0 % kTile + k);
+      row_offsets[k] = (r / kTile) * tile_row_cells + (r % kTile) * kTile;
+      const auto c = static_cast<size_t>(c0 % kTile + k);
+      column_offsets[k] = (c / kTile) * kTile * kTile + c % kTile;
+    }
+    const Vec2* block = &positions_[CellIndex(c0 - c0 % kTile, r0 - r0 % kTile)];
     while (occupied != 0) {
       const int bit = std::countr_zero(occupied);
       occupied &= occupied - 1;
-      const Vec2 q = positions_[CellIndex(c0 + (bit & 7), r0 + (bit >> 3))];
+      const size_t offset = row_offsets[bit >> 3] + column_offsets[bit & 7];
+      const Vec2 q = block[offset];
       out[kept] = q;
       kept += SquaredLength(q - p) < limit_squared;
     }

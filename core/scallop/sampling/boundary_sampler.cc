@@ -54,31 +54,42 @@ Doubles SquareRoots(Doubles t) {
 }
 
 // The arc of the candidate's circle (radius s) that the disk of radius s
-// about a neighbour at `offset` (|offset| < 2 s) covers.
+// about a neighbour at `offset` (|offset| < 2 s) covers, as the keys
+// (pseudo-angles) of its ends.
 struct Arc {
-  Vec2 from, to;
-  double from_key, to_key;  // their pseudo-angles
+  double from_key, to_key;
 };
 
 // The arcs that the neighbours at offset0 and offset1 from the candidate
 // cover, into arcs[0] and arcs[1]. Each is centred on the direction
 // o = offset, with ends along o -+ k o', k = sqrt(4 s^2 / D^2 - 1). Both at
 // once, in the two lanes of SSE2 registers: the divisions and square roots
-// are most of A3's arithmetic. Same bits as the scalar expressions.
+// are most of A3's arithmetic.
 void CoveredArcs(Vec2 offset0, Vec2 offset1, double spacing_squared, Arc* arcs) {
   const Doubles x = {offset0.x, offset1.x}, y = {offset0.y, offset1.y};
   const Doubles four_s2 = {4 * spacing_squared, 4 * spacing_squared};
   const Doubles t = four_s2 / (x * x + y * y) - 1.0;
   const Doubles k = SquareRoots(t);
   // o' = (-y, x); from = o - k o', to = o + k o'.
-  const Doubles from_x = x - k * -y, from_y = y - k * x;
-  const Doubles to_x = x + k * -y, to_y = y + k * x;
-  const Doubles from_key = PseudoAngles(from_x, from_y), to_key = PseudoAngles(to_x, to_y);
-  for (int lane = 0; lane < 2; ++lane) {
-    arcs[lane] = {
-        {from_x[lane], from_y[lane]}, {to_x[lane], to_y[lane]}, from_key[lane], to_key[lane]};
-  }
+  const Doubles from_key = PseudoAngles(x + k * y, y - k * x);
+  const Doubles to_key = PseudoAngles(x - k * y, y + k * x);
+  for (int lane = 0; lane < 2; ++lane) arcs[lane] = {from_key[lane], to_key[lane]};
 }
+
+// The arc of the candidate's circle that a point placed on it, in direction
+// `direction` (any length), covers with its disk: half-width pi/3 about it.
+// Rotating by -+60 degrees needs no trigonometry: cos = 1/2, sin = sqrt(3)/2.
+Arc PlacedArc(Vec2 direction) {
+  constexpr double kSin60 = 0.86602540378443864676372317075294;
+  const Vec2 half = 0.5 * direction, turned = {-kSin60 * direction.y, kSin60 * direction.x};
+  const Doubles keys = PseudoAngles(Doubles{half.x - turned.x, half.x + turned.x},
+                                    Doubles{half.y - turned.y, half.y + turned.y});
+  return {keys[0], keys[1]};
+}
+
+// A key interval this wide (about a draw's key) is given up when a placement
+// there fails the double-precision checks: a rounding sliver.
+constexpr double kRejectedKeyWidth = 1e-12;
 
 // SampleBoundary with `grid`, empty, covering the domain (a torus) or the
 // domain grown by 2 d + spacing (a rectangle): PointGrid, or on a rectangle
@@ -90,9 +101,6 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
   const double d = problem.min_distance;
   const double spacing_squared = spacing * spacing;
   const double d_squared = d * d;
-  // Only the arc of x's disk at distance exactly `spacing` from the candidate
-  // is removed when x is placed: half-width acos(1/2) = pi/3.
-  constexpr double kPlacedHalfWidth = kTwoPi / 6;
   // Placements failing the double-precision checks in a row before the
   // candidate's boundary is given up as rounding slivers.
   constexpr int kMaxRejectedPlacements = 64;
@@ -157,14 +165,14 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
     for (size_t n = 0; n < nearby_count && !boundary.empty(); ++n) {
       // Once nothing is left the rest of the neighbours cannot matter.
       const Arc& arc = arcs[n];
-      boundary.SubtractArc(arc.from_key, arc.to_key, arc.from, arc.to);
+      boundary.SubtractArc(arc.from_key, arc.to_key);
     }
-    boundary.Finish();
 
     int rejected = 0;  // in a row
     while (!boundary.empty()) {
-      const double angle = boundary.SampleAngle(rng);
-      const Vec2 x = grid.WrapIntoDomain(p + spacing * UnitAt(angle));
+      const auto [direction, key] = boundary.SampleDirection(rng);
+      const double scale = spacing / std::sqrt(SquaredLength(direction));
+      const Vec2 x = grid.WrapIntoDomain(p + scale * direction);
       // The margin in `spacing` makes these checks pass; they stay because the
       // contract is promised on the returned doubles, not on an argument.
       bool valid = (domain.torus || domain.rect.Contains(x)) && !InCoveredRect(problem, x);
@@ -173,10 +181,12 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
       }
       valid = valid && SquaredDistance(grid.NearestImage(x, p), x) >= d_squared;
       if (!valid) {
-        // Give up this angle (and a rounding-sized neighbourhood of it). Only
+        // Give up this key (and a rounding-sized neighbourhood of it). Only
         // rounding slivers fail; should a whole arc ever fail, the candidate
         // is given up rather than drawn from forever.
-        boundary.Subtract(angle, 1e-12);
+        const double from = key - kRejectedKeyWidth, to = key + kRejectedKeyWidth;
+        boundary.SubtractArc(from < 0 ? from + kFullTurnKey : from,
+                             to > kFullTurnKey ? to - kFullTurnKey : to);
         if (++rejected == kMaxRejectedPlacements) boundary.Clear();
         continue;
       }
@@ -184,7 +194,10 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
       add_point(x);
       if (nearby_count == nearby.size()) nearby.push_back(x);
       nearby[nearby_count++] = x;
-      boundary.Subtract(angle, kPlacedHalfWidth);
+      // Only the arc of x's disk at distance exactly `spacing` from the
+      // candidate is removed: half-width acos(1/2) = pi/3.
+      const Arc placed = PlacedArc(direction);
+      boundary.SubtractArc(placed.from_key, placed.to_key);
     }
   }
   if (unprocessed) {
