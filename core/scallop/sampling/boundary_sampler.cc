@@ -105,7 +105,14 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
   // candidate's boundary is given up as rounding slivers.
   constexpr int kMaxRejectedPlacements = 64;
 
-  std::vector<Vec2> points(problem.inert_points.begin(), problem.inert_points.end());
+  // Room for as many points as a maximal set of the domain holds (A3 packs
+  // 0.86 / d^2), up to 2^22: growing by doubling copied them over and over,
+  // and touched twice the memory.
+  const double expected = 0.9 * domain.rect.Width() * domain.rect.Height() / d_squared;
+  std::vector<Vec2> points;
+  points.reserve(problem.inert_points.size() + problem.fixed_points.size() +
+                 static_cast<size_t>(std::min(expected, 0x1p22)));
+  points.assign(problem.inert_points.begin(), problem.inert_points.end());
   for (size_t i = 0; i < points.size(); ++i) grid.Insert(static_cast<int32_t>(i), points[i]);
   points.insert(points.end(), problem.fixed_points.begin(), problem.fixed_points.end());
   const size_t fixed_count = points.size();
