@@ -33,7 +33,7 @@ inline double PseudoAngle(Vec2 v) {
 // angles, so |x| + |y| = 1. Without a branch on the quadrant (a drawn key's
 // quadrant cannot be predicted).
 inline Vec2 DirectionAtKey(double key) {
-  constexpr double kSignOfX[5] = {1, -1, -1, 1, 1}, kSignOfY[5] = {1, 1, -1, -1, 1};
+  static constexpr double kSignOfX[5] = {1, -1, -1, 1, 1}, kSignOfY[5] = {1, 1, -1, -1, 1};
   const auto quadrant = static_cast<int>(key);  // key >= 0: truncation is floor
   const double q = key - quadrant;              // exact
   const double parts[2] = {1.0 - q, q};

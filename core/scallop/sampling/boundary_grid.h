@@ -122,7 +122,8 @@ class BoundaryGrid {
     }
     if (self >= 0) occupied &= ~(uint64_t{1} << (8 * (own_row - r0) + (own_column - c0)));
     // Where the block's row k and column j start, as cell offsets from cell
-    // (c0, r0): looked up per occupied cell, which beat computing the tile.
+    // (c0, r0), looked up per occupied cell: fewer instructions a cell than
+    // working out its tile.
     size_t row_offsets[kTile], column_offsets[kTile];
     const auto tile_row_cells = static_cast<size_t>(tile_columns_ * kTile * kTile);
     for (int64_t k = 0; k < kTile; ++k) {
