@@ -547,6 +547,34 @@ TEST(ScallopedRegionTest, DegenerateDiskCases) {
   }
 }
 
+// A subtracted disk that holds a whole sector drops it without splitting it (a shortcut taken for
+// about half the sectors A1's disks reach). The shortcut must not take a sector that pokes out of
+// the disk by a hair: the lower half-annulus 1..2 about the origin lies inside the disk about
+// (0, -t) of radius sqrt(4 + t^2) save for two slivers at (+-2, 0), and those slivers must stay.
+TEST(ScallopedRegionTest, DiskHoldingAlmostAllOfASectorKeepsItsSlivers) {
+  for (const double t : {0.3, 0.5, 1.0}) {
+    const Vec2 centre{0.0, -t};
+    const double reach = std::sqrt(4.0 + t * t);  // the half-annulus's farthest point from centre
+    const Vec2 lower_probe{0.0, -1.5};
+    // Points of the lower half-annulus just inside its corners at (+-2, 0).
+    const Vec2 slivers[2] = {(2.0 - 1e-7) * Vec2{std::cos(-1e-6), std::sin(-1e-6)},
+                             (2.0 - 1e-7) * Vec2{std::cos(-kPi + 1e-6), std::sin(-kPi + 1e-6)}};
+
+    ScallopedRegion held = ScallopedRegion::Annulus({0.0, 0.0}, 1.0, 2.0);
+    held.SubtractDisk(centre, reach * (1.0 + 1e-7));
+    EXPECT_FALSE(held.Contains(lower_probe)) << t;
+    for (const Vec2& p : slivers) EXPECT_FALSE(held.Contains(p)) << t;
+
+    ScallopedRegion poking = ScallopedRegion::Annulus({0.0, 0.0}, 1.0, 2.0);
+    poking.SubtractDisk(centre, reach * (1.0 - 1e-5));
+    EXPECT_FALSE(poking.Contains(lower_probe)) << t;
+    for (const Vec2& p : slivers) {
+      ASSERT_GT(Length(p - centre), reach * (1.0 - 1e-5));  // outside the disk, in the annulus
+      EXPECT_TRUE(poking.Contains(p)) << t << " " << p.x << " " << p.y;
+    }
+  }
+}
+
 TEST(ScallopedRegionTest, DegenerateHalfPlaneCases) {
   const Vec2 apex{-4.0, 7.0};
   const double inner = 1.0;

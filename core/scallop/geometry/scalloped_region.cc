@@ -67,6 +67,8 @@ class DiskOperation {
         centre_distance_(centre_distance),
         subtract_(subtract),
         apex_inside_(centre_distance <= radius),
+        centre_distance_squared_(SquaredLength(centre)),
+        swallow_limit_((1.0 - 1e-6) * radius * radius),
         far_arc_(RadialCurve::Arc(centre, radius, +1)),
         near_arc_(far_arc_.OppositeHalf()) {
     if (apex_inside_) return;
@@ -92,6 +94,26 @@ class DiskOperation {
   }
   bool KeepsUntouched() const { return subtract_; }
   const RadialCurve& boundary() const { return far_arc_; }
+
+  // True when a subtracted disk certainly swallows the whole sector, so the full pass would find
+  // every piece empty and drop it (in A1 at 100k points: a third of the sectors a subtraction
+  // reaches, three quarters of those it drops). The sector lies
+  // within its wedge between distances min_near and max_far; the squared distance from the
+  // centre c to the point at distance rho along u is rho^2 - 2 rho (u . c) + |c|^2, convex in
+  // rho, and u . c is smallest at a wedge end unless -c points into the wedge. The margin (a
+  // millionth of r^2) dwarfs every rounding error of the bounds and of the probes' chord ends,
+  // so this never claims a sector the full pass would keep a sliver of.
+  bool Swallows(Vec2 begin, Vec2 end, double min_near, double max_far) const {
+    if (!subtract_) return false;
+    const double lowest_dot = InWedge(begin, end, -1.0 * centre_)
+                                  ? -centre_distance_
+                                  : std::min(Dot(begin, centre_), Dot(end, centre_));
+    const auto squared_distance = [&](double rho) {
+      return rho * rho - 2.0 * rho * lowest_dot + centre_distance_squared_;
+    };
+    return squared_distance(min_near) < swallow_limit_ &&
+           squared_distance(max_far) < swallow_limit_;
+  }
 
   int FixedCount() const { return apex_inside_ ? 0 : 2; }
   LazyAngle& Fixed(int i) { return tangents_[i]; }
@@ -132,6 +154,8 @@ class DiskOperation {
   double centre_distance_;
   bool subtract_;
   bool apex_inside_;
+  double centre_distance_squared_;
+  double swallow_limit_;  // Swallows' bound on squared distances
   RadialCurve far_arc_;
   RadialCurve near_arc_;
   LazyAngle tangents_[2];
@@ -150,6 +174,7 @@ class HalfPlaneOperation {
   // A sector entirely within distance `offset` of the apex lies inside the half-plane.
   bool MayTouch(Vec2, Vec2, double, double max_far) const { return !(offset_ >= max_far); }
   bool KeepsUntouched() const { return true; }
+  bool Swallows(Vec2, Vec2, double, double) const { return false; }
   const RadialCurve& boundary() const { return line_; }
 
   int FixedCount() const { return 2; }
@@ -334,6 +359,12 @@ void ScallopedRegion::AssignMoved(const ScallopedRegion& shape, Vec2 apex) {
   apex_ = apex;
 }
 
+void ScallopedRegion::EraseSector(size_t index) {
+  const auto offset = static_cast<std::ptrdiff_t>(index);
+  sectors_.erase(sectors_.begin() + offset);
+  sector_cache_.erase(sector_cache_.begin() + offset);
+}
+
 void ScallopedRegion::Clear() {
   sectors_.clear();
   sector_cache_.clear();
@@ -354,10 +385,14 @@ void ScallopedRegion::Apply(Operation& operation) {
     const Vec2 end_direction = cache.ends.end_direction;
     if (!operation.MayTouch(begin_direction, end_direction, cache.min_near, cache.max_far)) {
       if (!operation.KeepsUntouched()) {
-        sectors_.erase(sectors_.begin() + static_cast<std::ptrdiff_t>(index));
-        sector_cache_.erase(sector_cache_.begin() + static_cast<std::ptrdiff_t>(index));
+        EraseSector(index);
         changed = true;
       }
+      continue;
+    }
+    if (operation.Swallows(begin_direction, end_direction, cache.min_near, cache.max_far)) {
+      EraseSector(index);
+      changed = true;
       continue;
     }
     const double begin = sector.angle_begin;
@@ -475,8 +510,7 @@ void ScallopedRegion::Apply(Operation& operation) {
     changed = true;
     const auto offset = static_cast<std::ptrdiff_t>(index);
     if (kept == 0) {
-      sectors_.erase(sectors_.begin() + offset);
-      sector_cache_.erase(sector_cache_.begin() + offset);
+      EraseSector(index);
       continue;
     }
     // The runs point into the old sector, which the insertion may move: keep a copy.

@@ -88,6 +88,7 @@ class ScallopedRegion {
   template <typename Operation>
   void Apply(Operation& operation);
   void Clear();
+  void EraseSector(size_t index);  // from both parallel arrays
 
   // Per sector: its area (so Sample and Area need no recomputation), the unit directions of its
   // end angles and its curves' area remainders there (so operations need no sincos for them, and
