@@ -1,4 +1,4 @@
-// RadialCurve: construction, the closed-form area antiderivative and curve crossings.
+// RadialCurve: construction and the closed-form area antiderivative.
 // Kept apart from the header so the hot DistanceAlong stays inline while the
 // transcendental pieces live here.
 #include "scallop/geometry/radial_curve.h"
@@ -71,55 +71,6 @@ double RadialCurve::HalfSquareIntegralRemainder(Vec2 direction) const {
     remainder += sign_ * (w * root + radius_squared * DetAtan(w / root));
   }
   return 0.5 * remainder;
-}
-
-namespace {
-
-Vec2 Perpendicular(Vec2 v) { return {-v.y, v.x}; }
-
-int CircleCircle(Vec2 c1, double r1, Vec2 c2, double r2, Vec2 points[2]) {
-  const Vec2 delta = c2 - c1;
-  const double distance_squared = SquaredLength(delta);
-  if (distance_squared == 0.0) return 0;
-  const double distance = std::sqrt(distance_squared);
-  const double along = (r1 * r1 - r2 * r2 + distance_squared) / (2.0 * distance);
-  const double half_chord_squared = r1 * r1 - along * along;
-  if (!(half_chord_squared > 0.0)) return 0;
-  const Vec2 unit = (1.0 / distance) * delta;
-  const Vec2 base = c1 + along * unit;
-  const Vec2 offset = std::sqrt(half_chord_squared) * Perpendicular(unit);
-  points[0] = base - offset;
-  points[1] = base + offset;
-  return 2;
-}
-
-int CircleLine(Vec2 centre, double radius, Vec2 normal, double offset, Vec2 points[2]) {
-  const double signed_distance = Dot(normal, centre) - offset;
-  const double half_chord_squared = radius * radius - signed_distance * signed_distance;
-  if (!(half_chord_squared > 0.0)) return 0;
-  const Vec2 foot = centre - signed_distance * normal;
-  const Vec2 along = std::sqrt(half_chord_squared) * Perpendicular(normal);
-  points[0] = foot - along;
-  points[1] = foot + along;
-  return 2;
-}
-
-int LineLine(Vec2 n1, double c1, Vec2 n2, double c2, Vec2 points[2]) {
-  const double determinant = Cross(n1, n2);
-  if (determinant == 0.0) return 0;
-  points[0] = {(c1 * n2.y - c2 * n1.y) / determinant, (n1.x * c2 - n2.x * c1) / determinant};
-  return 1;
-}
-
-}  // namespace
-
-int CurveCrossings(const RadialCurve& a, const RadialCurve& b, Vec2 points[2]) {
-  if (a.is_arc() && b.is_arc()) {
-    return CircleCircle(a.centre(), a.radius(), b.centre(), b.radius(), points);
-  }
-  if (a.is_arc()) return CircleLine(a.centre(), a.radius(), b.normal(), b.offset(), points);
-  if (b.is_arc()) return CircleLine(b.centre(), b.radius(), a.normal(), a.offset(), points);
-  return LineLine(a.normal(), a.offset(), b.normal(), b.offset(), points);
 }
 
 }  // namespace scallop

@@ -3,6 +3,7 @@
 #include "scallop/geometry/scalloped_sector.h"
 #include "scallop/base/deterministic_math.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -66,7 +67,8 @@ double ScallopedSector::AngleAtArea(double area, const SectorEnds& ends) const {
     if (!(next > low && next < high)) next = low + 0.5 * (high - low);
     // The bracket cannot shrink further, or Newton's step has fallen to rounding noise.
     if (!(next > low && next < high)) return angle;
-    if (std::fabs(next - angle) <= 4.0 * epsilon * std::fmax(1.0, std::fabs(angle))) return next;
+    // std::max gives std::fmax's value here (for a NaN angle both give 1) without a libm call.
+    if (std::fabs(next - angle) <= 4.0 * epsilon * std::max(1.0, std::fabs(angle))) return next;
     angle = next;
   }
   return angle;
