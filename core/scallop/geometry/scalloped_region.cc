@@ -285,16 +285,19 @@ struct PieceRun {
 
 // RadialCurve::HalfSquareIntegralRemainder of the (at most four) curves of one sector's split at
 // its critical angles, each computed once: neighbouring runs share their end angles and curves.
+// The curves are the sector's own two (slots 0, 1, known in advance) and at most two of the
+// operation's (a disk's two halves, or one line), so a slot is found by at most three compares.
 class RemainderMemo {
  public:
-  explicit RemainderMemo(const CriticalAngles& critical) : critical_(critical) {}
+  RemainderMemo(const CriticalAngles& critical, const ScallopedSector& sector)
+      : critical_(critical), curves_{&sector.near, &sector.far, nullptr, nullptr} {}
 
   double At(const RadialCurve* curve, int index) {
     const int slot = SlotOf(curve);
-    const unsigned bit = 1u << index;
-    if (!(known_[slot] & bit)) {
+    const uint32_t bit = KnownBit(slot, index);
+    if (!(known_ & bit)) {
       values_[slot][index] = curve->HalfSquareIntegralRemainder(critical_.directions[index]);
-      known_[slot] |= bit;
+      known_ |= bit;
     }
     return values_[slot][index];
   }
@@ -304,25 +307,28 @@ class RemainderMemo {
   void Know(const RadialCurve* curve, int index, double value) {
     const int slot = SlotOf(curve);
     values_[slot][index] = value;
-    known_[slot] |= 1u << index;
+    known_ |= KnownBit(slot, index);
   }
 
  private:
+  static uint32_t KnownBit(int slot, int index) { return uint32_t{1} << (8 * slot + index); }
+
   int SlotOf(const RadialCurve* curve) {
-    int slot = 0;
-    while (slot < curve_count_ && curves_[slot] != curve) ++slot;
-    if (slot == curve_count_) {
-      curves_[curve_count_++] = curve;
-      known_[slot] = 0;
+    if (curve == curves_[0]) return 0;
+    if (curve == curves_[1]) return 1;
+    if (curve == curves_[2]) return 2;
+    if (curves_[2] == nullptr) {
+      curves_[2] = curve;
+      return 2;
     }
-    return slot;
+    curves_[3] = curve;
+    return 3;
   }
 
   const CriticalAngles& critical_;
   const RadialCurve* curves_[4];
-  unsigned known_[4];
+  uint32_t known_ = 0;  // bit 8 slot + index: values_[slot][index] is set
   double values_[4][8];
-  int curve_count_ = 0;
 };
 
 }  // namespace
@@ -482,7 +488,7 @@ void ScallopedRegion::Apply(Operation& operation) {
     double areas[14];
     double run_ends[14][4];  // each run's SectorEnds remainders: near_begin, near_end, far_...
     int kept = 0;
-    RemainderMemo remainders(critical);
+    RemainderMemo remainders(critical, sector);
     // The sector's own curves at its own ends: computed when it was made.
     const int last = critical.count - 1;
     remainders.Know(&sector.near, 0, cache.ends.near_begin);
