@@ -5,7 +5,6 @@
 #include "scallop/base/deterministic_math.h"
 
 #include <cmath>
-#include <limits>
 
 namespace scallop {
 
@@ -28,16 +27,6 @@ RadialCurve RadialCurve::Line(Vec2 unit_normal, double offset) {
   curve.vector_ = unit_normal;
   curve.scalar_ = offset;
   return curve;
-}
-
-double RadialCurve::MinDistance() const {
-  if (kind_ == Kind::kLine) return scalar_;
-  return std::fabs(std::sqrt(SquaredLength(vector_)) - scalar_);
-}
-
-double RadialCurve::MaxDistance() const {
-  if (kind_ == Kind::kLine) return std::numeric_limits<double>::infinity();
-  return std::sqrt(SquaredLength(vector_)) + scalar_;
 }
 
 double RadialCurve::HalfSquareIntegralAlong(double angle, Vec2 direction) const {

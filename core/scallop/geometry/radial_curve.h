@@ -3,7 +3,9 @@
 // Humphreys 2006) or a straight line, which clips neighbourhoods to rectangles.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "scallop/geometry/vec2.h"
 
@@ -91,8 +93,14 @@ class RadialCurve {
 
   // Bounds on rho over any ray where the curve is defined: MinDistance() <= rho <= MaxDistance().
   // Arc: |d - R| and d + R; line: offset and +inf. O(1), one sqrt for arcs.
-  double MinDistance() const;
-  double MaxDistance() const;
+  double MinDistance() const {
+    if (kind_ == Kind::kLine) return scalar_;
+    return std::fabs(std::sqrt(SquaredLength(vector_)) - scalar_);
+  }
+  double MaxDistance() const {
+    if (kind_ == Kind::kLine) return std::numeric_limits<double>::infinity();
+    return std::sqrt(SquaredLength(vector_)) + scalar_;
+  }
 
   friend bool operator==(const RadialCurve& a, const RadialCurve& b) {
     return a.kind_ == b.kind_ && a.sign_ == b.sign_ && a.vector_ == b.vector_ &&
