@@ -162,7 +162,7 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
     if (!domain.torus) ClipToRectangle(domain.rect, p, spacing, boundary);
     nearby_count = grid.GatherNear(p, 2 * spacing, 4 * spacing_squared, index, nearby);
     // The arcs first, the subtractions after: the arcs' divisions and square
-    // roots then overlap instead of waiting behind the subtractions' branches.
+    // roots then overlap instead of each waiting for the cut before it.
     if (arcs.size() < nearby_count + 1) arcs.resize(nearby_count + 1);
     for (size_t n = 0; n < nearby_count; n += 2) {
       // An odd count repeats the last neighbour in the spare lane.
