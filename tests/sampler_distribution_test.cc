@@ -13,6 +13,8 @@
 #include "scallop/analysis/point_statistics.h"
 #include "scallop/random/rng.h"
 #include "scallop/sampling/sampler.h"
+#include "scallop/sampling/scalloped_sampler.h"
+#include "scallop/sampling/sampling_problem.h"
 
 namespace scallop {
 namespace {
@@ -67,7 +69,8 @@ struct Measured {
 
 // Runs `sample` for kSeeds fixed seeds and records rho and g(r) of each output.
 Measured Measure(const std::string& name,
-                 const std::function<std::vector<Vec2>(uint64_t seed)>& sample) {
+                 const std::function<std::vector<Vec2>(uint64_t seed)>& sample,
+                 const Domain& domain = kTorus) {
   Measured measured;
   measured.name = name;
   measured.g.assign(kBins, {});
@@ -76,10 +79,10 @@ Measured Measure(const std::string& name,
     // streams are independent anyway.
     const std::vector<Vec2> points = sample(HashWords({0xd157, static_cast<uint64_t>(k)}));
     const StatusOr<double> rho =
-        NormalisedRadius(static_cast<int64_t>(points.size()), kTorus.rect.Area(), kD);
+        NormalisedRadius(static_cast<int64_t>(points.size()), domain.rect.Area(), kD);
     EXPECT_TRUE(rho.ok()) << rho.status().message();
     const StatusOr<PairDistanceHistogram> histogram =
-        HistogramPairDistances(points, kTorus, kHistogramReach, kBins);
+        HistogramPairDistances(points, domain, kHistogramReach, kBins);
     EXPECT_TRUE(histogram.ok()) << histogram.status().message();
     if (!rho.ok() || !histogram.ok()) continue;
     measured.rho.push_back(*rho);
@@ -291,6 +294,37 @@ TEST(SamplerDistributionTest, A1MatchesBruteForceOracle) {
     EXPECT_TRUE(RhoAgrees(a1, oracle)) << density;
     EXPECT_TRUE(HistogramsAgree(a1, oracle)) << density;
   }
+}
+
+// On a rectangle A1 runs its bulk with CellDarts (the tori above keep the neighbourhoods
+// throughout): the two ways must give one law. Rho counts the rectangle's edges in, which
+// lowers it for both alike.
+TEST(SamplerDistributionTest, A1CellsMatchNeighbourhoodsOnARectangle) {
+  constexpr Domain kRectangle{{-20.0, -20.0, 20.0, 20.0}, false};
+  const auto measure = [&](A1Bulk bulk, double density) {
+    char name[64];
+    std::snprintf(name, sizeof name, "A1 %s density %.2f",
+                  bulk == A1Bulk::kCells ? "cells" : "neighbourhoods", density);
+    return Measure(
+        name,
+        [&](uint64_t seed) {
+          SamplingProblem problem;
+          problem.domain = kRectangle;
+          problem.min_distance = kD;
+          problem.density = density;
+          Rng rng(seed);
+          return SampleScalloped(problem, CandidateChoice::kByArea, rng, bulk);
+        },
+        kRectangle);
+  };
+  for (const double density : {2.0, 1.3}) {
+    const Measured cells = measure(A1Bulk::kCells, density);
+    const Measured neighbourhoods = measure(A1Bulk::kNeighbourhoods, density);
+    EXPECT_TRUE(RhoAgrees(cells, neighbourhoods)) << density;
+    EXPECT_TRUE(HistogramsAgree(cells, neighbourhoods)) << density;
+  }
+  // And the comparison tells the densities apart: cells at 1.3 against neighbourhoods at 2.
+  EXPECT_FALSE(RhoAgrees(measure(A1Bulk::kCells, 1.3), measure(A1Bulk::kNeighbourhoods, 2.0)));
 }
 
 // A2, A3 and the density parameter. Bands are the measured means widened by many standard

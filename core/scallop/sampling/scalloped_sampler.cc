@@ -12,6 +12,7 @@
 
 #include "scallop/geometry/scalloped_region.h"
 #include "scallop/sampling/area_sum_tree.h"
+#include "scallop/sampling/cell_darts.h"
 #include "scallop/sampling/point_grid.h"
 #include "scallop/sampling/spacing.h"
 
@@ -29,9 +30,10 @@ constexpr double kSliverShare = 0.02;
 
 class ScallopedSampler {
  public:
-  ScallopedSampler(const SamplingProblem& problem, CandidateChoice choice, Rng& rng)
+  ScallopedSampler(const SamplingProblem& problem, CandidateChoice choice, A1Bulk bulk, Rng& rng)
       : problem_(problem),
         choice_(choice),
+        bulk_(bulk),
         rng_(rng),
         outer_radius_(problem.density * problem.min_distance),
         spacing_(
@@ -43,10 +45,14 @@ class ScallopedSampler {
         annulus_(ScallopedRegion::Annulus({0.0, 0.0}, spacing_, outer_radius_)) {}
 
   std::vector<Vec2> Run() {
-    for (const Vec2& p : problem_.inert_points) AddInertPoint(p);
-    for (const Vec2& p : problem_.fixed_points) AddPoint(p);
-    fixed_count_ = points_.size();
-    if (NeedsSeedPoint(problem_, outer_radius_)) AddPoint(SeedPoint(problem_, rng_));
+    if (UsesCells()) {
+      RunCells();
+    } else {
+      for (const Vec2& p : problem_.inert_points) AddInertPoint(p);
+      for (const Vec2& p : problem_.fixed_points) AddPoint(p);
+      fixed_count_ = points_.size();
+      if (NeedsSeedPoint(problem_, outer_radius_)) AddPoint(SeedPoint(problem_, rng_));
+    }
     for (;;) {
       // Every available spot within r' of a point lies in some neighbourhood,
       // and F1 is continuous, so once no neighbourhood that can reach the
@@ -61,6 +67,70 @@ class ScallopedSampler {
   }
 
  private:
+  // A1 on a plain rectangle runs its bulk with CellDarts. The plane's problems (fixed and inert
+  // points, covered and stop rectangles) and tori keep the neighbourhoods throughout.
+  bool UsesCells() const {
+    return choice_ == CandidateChoice::kByArea && bulk_ == A1Bulk::kCells && !problem_.domain.torus &&
+           problem_.fixed_points.empty() && problem_.inert_points.empty() &&
+           problem_.covered_rects.empty() && !problem_.stop_when_covered;
+  }
+
+  // The same process as AddPoint and DrawFrom, with cells for all but its last voids: the
+  // points CellDarts places get no neighbourhood, and once it stops, the points within r' of
+  // its open cells (which hold every spot still available and reachable) get theirs, exactly as
+  // AddPoint and the cuts since would have left them.
+  void RunCells() {
+    CellDarts cells(problem_.domain.rect, problem_.min_distance, spacing_, outer_radius_);
+    std::vector<Vec2> placed = {SeedPoint(problem_, rng_)};
+    cells.AddPoint(placed[0]);
+    cells.Run(rng_, placed);
+    points_.reserve(placed.size());
+    for (const Vec2& p : placed) {
+      const auto index = static_cast<int32_t>(points_.size());
+      points_.push_back(p);
+      grid_.Insert(index, p);
+    }
+    neighbourhoods_.resize(points_.size());
+    open_near_stop_flags_.resize(points_.size(), 0);
+    std::vector<uint8_t> near_open(points_.size(), 0);
+    cells.ForEachOpenCell([&](const Rect& cell) {
+      const Vec2 centre{0.5 * (cell.x0 + cell.x1), 0.5 * (cell.y0 + cell.y1)};
+      grid_.ForEachNear(centre, outer_radius_ + cell.Width(), [&](int32_t index, Vec2 q) {
+        if (SquaredDistance(cell, q) <= outer_radius_ * outer_radius_) near_open[static_cast<size_t>(index)] = 1;
+      });
+    });
+    for (size_t i = 0; i < points_.size(); ++i) {
+      if (near_open[i]) BuildNeighbourhood(static_cast<int32_t>(i));
+    }
+  }
+
+  // N_index as AddPoint made it and every later point's cut has left it: the annulus minus the
+  // r'-disks of earlier points and the s-disks of later ones, nearest first.
+  void BuildNeighbourhood(int32_t index) {
+    const Vec2 x = points_[static_cast<size_t>(index)];
+    ScallopedRegion& region = scratch_region_;
+    region.AssignMoved(annulus_, x);
+    ClipToDomain(region);
+    nearby_.clear();
+    const double reach = outer_radius_ + spacing_;
+    grid_.ForEachNear(x, 2 * outer_radius_, [&](int32_t other, Vec2 q) {
+      if (other == index) return;
+      const double distance_squared = SquaredDistance(q, x);
+      const double limit = other < index ? 2 * outer_radius_ : reach;
+      if (distance_squared < limit * limit) nearby_.push_back({distance_squared, other, q});
+    });
+    std::sort(nearby_.begin(), nearby_.end(), [](const Nearby& a, const Nearby& b) {
+      return a.distance_squared != b.distance_squared ? a.distance_squared < b.distance_squared
+                                                      : a.index < b.index;
+    });
+    for (const Nearby& n : nearby_) {
+      if (region.empty()) break;
+      region.SubtractDisk(n.position, n.index < index ? outer_radius_ : spacing_);
+    }
+    neighbourhoods_[static_cast<size_t>(index)] = region.empty() ? ScallopedRegion() : region;
+    SetNeighbourhoodArea(index);
+  }
+
   // The index of a point with a non-empty neighbourhood, or -1 when none is left.
   int32_t ChooseCandidate() {
     if (choice_ == CandidateChoice::kByArea) {
@@ -223,6 +293,7 @@ class ScallopedSampler {
 
   const SamplingProblem& problem_;
   const CandidateChoice choice_;
+  const A1Bulk bulk_;
   Rng& rng_;
   const double outer_radius_;  // r'
   const double spacing_;       // s: d plus the rounding margin
@@ -247,8 +318,8 @@ class ScallopedSampler {
 }  // namespace
 
 std::vector<Vec2> SampleScalloped(const SamplingProblem& problem, CandidateChoice choice,
-                                  Rng& rng) {
-  return ScallopedSampler(problem, choice, rng).Run();
+                                  Rng& rng, A1Bulk bulk) {
+  return ScallopedSampler(problem, choice, bulk, rng).Run();
 }
 
 }  // namespace scallop

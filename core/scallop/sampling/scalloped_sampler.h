@@ -16,11 +16,22 @@ enum class CandidateChoice {
   kUniform,  // A2: neighbourhood chosen uniformly
 };
 
+// How A1 places the bulk of its points; both follow the same law (tests/cell_darts_test.cc and
+// tests/sampler_distribution_test.cc compare them).
+enum class A1Bulk {
+  // CellDarts (cell_darts.h) until only thin voids are left, then neighbourhoods, on plain
+  // rectangles (no fixed or inert points, covered or stop rectangles); elsewhere as below.
+  kCells,
+  // The paper's neighbourhoods throughout.
+  kNeighbourhoods,
+};
+
 // Samples until no neighbourhood is left. With density 2 (r' = 2d) and
 // kByArea the result is distributed as dart throwing run to exhaustion.
+// `bulk` matters for kByArea only.
 // REQUIRES: a problem that ValidateSamplerOptions accepted.
-// Cost: A1 O(N log N) (a sum tree over areas), A2 O(N).
+// Cost: A1 O(N log N) (a sum tree over areas; with cells, O(N) expected for the bulk), A2 O(N).
 std::vector<Vec2> SampleScalloped(const SamplingProblem& problem, CandidateChoice choice,
-                                  Rng& rng);
+                                  Rng& rng, A1Bulk bulk = A1Bulk::kCells);
 
 }  // namespace scallop

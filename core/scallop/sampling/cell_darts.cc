@@ -1,0 +1,287 @@
+// CellDarts implementation.
+#include "scallop/sampling/cell_darts.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace scallop {
+namespace {
+
+// A coverage claim needs the spot this much inside a disk (relative to s^2): far above the
+// rounding of the tests below (a few ulps), far below anything a sampler could notice.
+constexpr double kCoverageMargin = 1e-9;
+
+// Squared distance from p to the closed rectangle `cell`.
+double SquaredDistanceTo(const Rect& cell, Vec2 p) { return SquaredDistance(cell, p); }
+
+}  // namespace
+
+CellDarts::CellDarts(const Rect& domain, double min_distance, double spacing, double outer_radius)
+    : domain_(domain),
+      spacing_squared_(spacing * spacing),
+      covered_squared_(spacing * spacing * (1.0 - kCoverageMargin)),
+      outer_radius_(outer_radius),
+      outer_squared_(outer_radius * outer_radius),
+      // BoundaryGrid's cells (and PointGrid's): a point covers its own cell, whose diagonal is
+      // just under d.
+      cell_size_(min_distance / std::sqrt(2.0) * (1.0 - 1e-9)),
+      columns_(static_cast<int64_t>(std::floor(domain.Width() / cell_size_)) + 1),
+      rows_(static_cast<int64_t>(std::floor(domain.Height() / cell_size_)) + 1),
+      grid_(domain, min_distance, 0.0) {
+  const auto cells = static_cast<size_t>(columns_ * rows_);
+  state_.assign(cells, kUntouched);
+  corners_.assign(cells, 0);
+  failures_.assign(cells, 0);
+  where_.assign(cells, -1);
+  for (int level = 0; level <= kFinestLevel; ++level) {
+    side_[level] = std::ldexp(cell_size_, -level);
+    area_[level] = side_[level] * side_[level];
+  }
+}
+
+Rect CellDarts::TopCell(int32_t id) const {
+  const double x = domain_.x0 + static_cast<double>(id % columns_) * cell_size_;
+  const double y = domain_.y0 + static_cast<double>(id / columns_) * cell_size_;
+  return {x, y, x + cell_size_, y + cell_size_};
+}
+
+int32_t CellDarts::TopCellId(Vec2 p) const {
+  const int64_t column = std::clamp<int64_t>(
+      static_cast<int64_t>((p.x - domain_.x0) / cell_size_), 0, columns_ - 1);
+  const int64_t row = std::clamp<int64_t>(
+      static_cast<int64_t>((p.y - domain_.y0) / cell_size_), 0, rows_ - 1);
+  return static_cast<int32_t>(row * columns_ + column);
+}
+
+void CellDarts::Open(int32_t id) {
+  const auto i = static_cast<size_t>(id);
+  state_[i] = kOpen;
+  where_[i] = static_cast<int32_t>(open_.size());
+  open_.push_back(id);
+}
+
+void CellDarts::Close(int32_t id) {
+  const auto i = static_cast<size_t>(id);
+  if (state_[i] == kOpen) {
+    const int32_t last = open_.back();
+    open_[static_cast<size_t>(where_[i])] = last;
+    where_[static_cast<size_t>(last)] = where_[i];
+    open_.pop_back();
+  }
+  state_[i] = kClosed;
+}
+
+uint8_t CellDarts::CornersCovered(const Rect& cell, Vec2 disk) const {
+  uint8_t bits = 0;
+  for (int corner = 0; corner < 4; ++corner) {
+    const Vec2 spot{(corner & 1) ? cell.x1 : cell.x0, (corner & 2) ? cell.y1 : cell.y0};
+    if (SquaredDistance(spot, disk) < covered_squared_) bits |= static_cast<uint8_t>(1 << corner);
+  }
+  return bits;
+}
+
+void CellDarts::GatherDisks(const Rect& cell) {
+  const Vec2 centre{0.5 * (cell.x0 + cell.x1), 0.5 * (cell.y0 + cell.y1)};
+  const double reach = std::sqrt(spacing_squared_) + 0.5 * std::sqrt(2.0) * cell.Width() * 1.01;
+  const size_t count = grid_.GatherNear(centre, reach, reach * reach, -1, nearby_);
+  disks_.clear();
+  for (size_t k = 0; k < count; ++k) {
+    if (SquaredDistanceTo(cell, nearby_[k]) < spacing_squared_) disks_.push_back(nearby_[k]);
+  }
+}
+
+bool CellDarts::Covered(const Rect& cell, std::span<const Vec2> disks) const {
+  // A spot of the cell outside every disk would lie in a region whose boundary has a corner
+  // that is either a spot of the cell's edges or a crossing of two circles inside the cell
+  // (a region outside all disks cannot be bounded by whole circles). So: every edge covered,
+  // and every crossing inside the closed cell covered by a third disk. Ties count as uncovered.
+  const double radius_squared = covered_squared_;
+  for (int edge = 0; edge < 4; ++edge) {
+    const bool horizontal = edge < 2;
+    const double fixed = edge == 0 ? cell.y0 : edge == 1 ? cell.y1 : edge == 2 ? cell.x0 : cell.x1;
+    const double low = horizontal ? cell.x0 : cell.y0, high = horizontal ? cell.x1 : cell.y1;
+    // The edge's intervals inside each disk, sorted by start (a handful: insertion sort).
+    double starts[64], ends[64];
+    int count = 0;
+    for (const Vec2& disk : disks) {
+      const double offset = horizontal ? disk.y - fixed : disk.x - fixed;
+      const double half_squared = radius_squared - offset * offset;
+      if (!(half_squared > 0.0) || count == 64) continue;
+      const double half = std::sqrt(half_squared), middle = horizontal ? disk.x : disk.y;
+      int j = count++;
+      for (; j > 0 && starts[j - 1] > middle - half; --j) {
+        starts[j] = starts[j - 1];
+        ends[j] = ends[j - 1];
+      }
+      starts[j] = middle - half;
+      ends[j] = middle + half;
+    }
+    double reached = low;
+    for (int i = 0; i < count && reached <= high; ++i) {
+      if (!(starts[i] < reached)) return false;
+      reached = std::max(reached, ends[i]);
+    }
+    if (!(reached > high)) return false;
+  }
+  const size_t n = disks.size();
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = i + 1; j < n; ++j) {
+      const Vec2 delta = disks[j] - disks[i];
+      const double distance_squared = SquaredLength(delta);
+      if (!(distance_squared < 4.0 * radius_squared) || distance_squared == 0.0) continue;
+      const double distance = std::sqrt(distance_squared);
+      const double half_chord = std::sqrt(radius_squared - 0.25 * distance_squared);
+      const Vec2 middle = disks[i] + 0.5 * delta;
+      const Vec2 across = (half_chord / distance) * Vec2{-delta.y, delta.x};
+      for (const Vec2 crossing : {middle - across, middle + across}) {
+        if (crossing.x < cell.x0 || crossing.x > cell.x1 || crossing.y < cell.y0 ||
+            crossing.y > cell.y1) {
+          continue;
+        }
+        bool covered = false;
+        for (size_t k = 0; k < n && !covered; ++k) {
+          covered = k != i && k != j && SquaredDistance(crossing, disks[k]) < radius_squared;
+        }
+        if (!covered) return false;
+      }
+    }
+  }
+  return true;
+}
+
+void CellDarts::AddPoint(Vec2 p) {
+  grid_.Insert(-1, p);
+  const int32_t own = TopCellId(p);
+  // A point in a split cell leaves its children open: darts there miss and retire them.
+  if (state_[static_cast<size_t>(own)] != kSplit) Close(own);
+  const int64_t own_column = own % columns_, own_row = own / columns_;
+  const auto reach = static_cast<int64_t>(std::ceil(outer_radius_ / cell_size_));
+  for (int64_t row = std::max<int64_t>(own_row - reach, 0);
+       row <= std::min<int64_t>(own_row + reach, rows_ - 1); ++row) {
+    for (int64_t column = std::max<int64_t>(own_column - reach, 0);
+         column <= std::min<int64_t>(own_column + reach, columns_ - 1); ++column) {
+      const auto id = static_cast<int32_t>(row * columns_ + column);
+      const State state = state_[static_cast<size_t>(id)];
+      if (state == kClosed || state == kSplit) continue;
+      const Rect cell = TopCell(id);
+      const double distance_squared = SquaredDistanceTo(cell, p);
+      if (state == kUntouched) {
+        if (distance_squared > outer_squared_) continue;
+        Open(id);
+        GatherDisks(cell);
+        uint8_t corners = 0;
+        for (const Vec2& disk : disks_) corners |= CornersCovered(cell, disk);
+        corners_[static_cast<size_t>(id)] = corners;
+        if (corners == 15 && Covered(cell)) Close(id);
+        continue;
+      }
+      if (!(distance_squared < spacing_squared_)) continue;
+      const auto corners =
+          static_cast<uint8_t>(corners_[static_cast<size_t>(id)] | CornersCovered(cell, p));
+      corners_[static_cast<size_t>(id)] = corners;
+      if (corners == 15) {
+        GatherDisks(cell);
+        if (Covered(cell)) Close(id);
+      }
+    }
+  }
+}
+
+void CellDarts::Missed(int level, size_t index) {
+  Rect cell;
+  if (level == 0) {
+    const int32_t id = open_[index];
+    if (++failures_[static_cast<size_t>(id)] < kFailuresToSplit) return;
+    cell = TopCell(id);
+    Close(id);
+    state_[static_cast<size_t>(id)] = kSplit;
+  } else {
+    std::vector<SubCell>& cells = sub_[static_cast<size_t>(level)];
+    SubCell& sub = cells[index];
+    if (++sub.failures % kFailuresToSplit != 0) return;
+    cell = {sub.x, sub.y, sub.x + side_[level], sub.y + side_[level]};
+    GatherDisks(cell);
+    if (level == kFinestLevel) {
+      // The finest cells are not split: retested now and then, else left to the caller.
+      if (Covered(cell)) {
+        sub = cells.back();
+        cells.pop_back();
+      }
+      return;
+    }
+    sub = cells.back();
+    cells.pop_back();
+  }
+  if (level == 0) GatherDisks(cell);
+  const double half = 0.5 * (cell.x1 - cell.x0);
+  for (int quarter = 0; quarter < 4; ++quarter) {
+    const double x = cell.x0 + ((quarter & 1) ? half : 0.0);
+    const double y = cell.y0 + ((quarter & 2) ? half : 0.0);
+    if (x >= domain_.x1 || y >= domain_.y1) continue;  // wholly outside the domain
+    const Rect child{x, y, x + half, y + half};
+    // Only the disks that reach the child: the crossing test is cubic in their number.
+    child_disks_.clear();
+    for (const Vec2& disk : disks_) {
+      if (SquaredDistanceTo(child, disk) < spacing_squared_) child_disks_.push_back(disk);
+    }
+    if (!Covered(child, child_disks_)) sub_[static_cast<size_t>(level + 1)].push_back({x, y, 0});
+  }
+}
+
+void CellDarts::Run(Rng& rng, std::vector<Vec2>& placed, size_t max_points) {
+  // A safety valve: should darts ever stall, the caller's exact neighbourhoods take over early.
+  constexpr int64_t kMaxMissesInARow = 1 << 20;
+  int64_t misses_in_a_row = 0;
+  while (placed.size() < max_points) {
+    double coarse = static_cast<double>(open_.size()) * area_[0];
+    for (int level = 1; level < kFinestLevel; ++level) {
+      coarse += static_cast<double>(sub_[static_cast<size_t>(level)].size()) * area_[level];
+    }
+    if (!(coarse > 0.0)) return;
+    const double total =
+        coarse + static_cast<double>(sub_[kFinestLevel].size()) * area_[kFinestLevel];
+    // A level by its open area, then a cell of it uniformly, then a spot of the cell.
+    double target = rng.Uniform() * total;
+    int level = 0;
+    for (; level < kFinestLevel; ++level) {
+      const size_t count = level == 0 ? open_.size() : sub_[static_cast<size_t>(level)].size();
+      const double area = static_cast<double>(count) * area_[level];
+      if (target < area) break;
+      target -= area;
+    }
+    const size_t count = level == 0 ? open_.size() : sub_[static_cast<size_t>(level)].size();
+    if (count == 0) continue;  // rounding in the running subtraction: draw again
+    const size_t index = rng.Below(count);
+    Rect cell;
+    if (level == 0) {
+      cell = TopCell(open_[index]);
+    } else {
+      const SubCell& sub = sub_[static_cast<size_t>(level)][index];
+      cell = {sub.x, sub.y, sub.x + side_[level], sub.y + side_[level]};
+    }
+    const double u = rng.Uniform();
+    const Vec2 dart{cell.x0 + u * side_[level], cell.y0 + rng.Uniform() * side_[level]};
+    if (!domain_.Contains(dart)) continue;
+    // In T: no point within s (most darts stop here), and one within r'. GatherNear keeps
+    // exactly the points closer than its limit, so the counts answer both.
+    const double spacing = std::sqrt(spacing_squared_);
+    const bool available = grid_.GatherNear(dart, spacing, spacing_squared_, -1, nearby_) == 0;
+    // A dart beyond r' of every point counts as a miss too: splitting then isolates such
+    // spots, which the caller's neighbourhoods finish like any other.
+    if (!available || grid_.GatherNear(dart, outer_radius_, outer_squared_, -1, nearby_) == 0) {
+      Missed(level, index);
+      if (++misses_in_a_row == kMaxMissesInARow) return;
+      continue;
+    }
+    misses_in_a_row = 0;
+    if (level > 0) {
+      std::vector<SubCell>& cells = sub_[static_cast<size_t>(level)];
+      cells[index] = cells.back();
+      cells.pop_back();
+    }
+    AddPoint(dart);
+    placed.push_back(dart);
+  }
+}
+
+}  // namespace scallop

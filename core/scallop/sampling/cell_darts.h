@@ -1,0 +1,102 @@
+// CellDarts: the bulk of A1 on a rectangle, run with grid cells instead of neighbourhoods.
+//
+// A1 places each next point uniformly over T, the spots of the domain at least s (the spacing)
+// from every point and within r' of one: the union of the points' neighbourhoods. A dart drawn
+// uniformly from any union of cells that holds T, and kept only when it lands in T, follows the
+// same law, and needs no neighbourhood. The cells are the point grid's (side just under
+// d / sqrt 2, so a point covers its own cell). A cell opens once it comes within r' of a point,
+// and closes when a point lands in it or when the s-disks around it provably cover it (every
+// edge covered, every crossing of two circles inside it covered by a third, with a margin far
+// above rounding). A cell that darts keep missing is split in four and its children tested the
+// same way (the refinement of Ebeida et al. 2011), down to kFinestLevel.
+//
+// Run stops once only finest-level cells are left open: they hold the last, thin voids, where
+// darts almost never land. The caller then finishes with exact neighbourhoods, built only for
+// the points within r' of an open cell (ForEachOpenCell); no other point's neighbourhood can be
+// non-empty, since T lies inside the open cells.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "scallop/geometry/rect.h"
+#include "scallop/geometry/vec2.h"
+#include "scallop/random/rng.h"
+#include "scallop/sampling/boundary_grid.h"
+
+namespace scallop {
+
+class CellDarts {
+ public:
+  static constexpr int kFinestLevel = 8;      // cells 2^-6 of the grid's side
+  static constexpr int kFailuresToSplit = 6;  // darts a cell misses before it is split or retested
+
+  // REQUIRES: a non-empty rectangle, 0 < min_distance <= spacing < outer_radius <= 2 spacing.
+  CellDarts(const Rect& domain, double min_distance, double spacing, double outer_radius);
+
+  // Adds a point placed by the caller (the seed): it closes, covers and opens cells as a
+  // dart does. REQUIRES: p in the domain, at least `spacing` from every point added.
+  void AddPoint(Vec2 p);
+
+  // Throws darts until no cell coarser than the finest level is open, or `placed` holds
+  // `max_points` (tests stop early to check the cells mid-run), appending each kept dart to
+  // `placed` (after adding it). Draws from `rng` only.
+  void Run(Rng& rng, std::vector<Vec2>& placed, size_t max_points = SIZE_MAX);
+
+  // Calls visit(cell) for every open cell: together they hold every spot of T.
+  template <typename Visit>
+  void ForEachOpenCell(Visit&& visit) const {
+    for (const int32_t id : open_) visit(TopCell(id));
+    for (int level = 1; level <= kFinestLevel; ++level) {
+      for (const SubCell& cell : sub_[static_cast<size_t>(level)]) {
+        visit(Rect{cell.x, cell.y, cell.x + side_[level], cell.y + side_[level]});
+      }
+    }
+  }
+
+ private:
+  enum State : uint8_t { kUntouched, kOpen, kClosed, kSplit };
+  struct SubCell {
+    double x, y;  // lower-left corner
+    int32_t failures;
+  };
+
+  Rect TopCell(int32_t id) const;
+  int32_t TopCellId(Vec2 p) const;
+  void Open(int32_t id);
+  void Close(int32_t id);
+  // Bits 0-3: which corners of the cell `disk` covers with room to spare.
+  uint8_t CornersCovered(const Rect& cell, Vec2 disk) const;
+  // The points whose s-disk may reach `cell`, into disks_.
+  void GatherDisks(const Rect& cell);
+  // True when `disks` cover `cell` with room to spare (never wrongly). REQUIRES: every disk
+  // that reaches the cell is among them.
+  bool Covered(const Rect& cell, std::span<const Vec2> disks) const;
+  bool Covered(const Rect& cell) const { return Covered(cell, disks_); }
+  // After a dart missed T in `cell` of `level` (position `index` in its list).
+  void Missed(int level, size_t index);
+
+  Rect domain_;
+  double spacing_squared_;
+  double covered_squared_;  // a disk "surely" holds spots this close to its centre
+  double outer_radius_;
+  double outer_squared_;
+  double cell_size_;
+  int64_t columns_, rows_;
+  BoundaryGrid grid_;
+  std::vector<State> state_;      // per top cell
+  std::vector<uint8_t> corners_;  // per top cell: CornersCovered of all disks so far
+  std::vector<uint8_t> failures_;
+  std::vector<int32_t> where_;  // per open top cell: its index in open_
+  std::vector<int32_t> open_;   // open top cells
+  std::vector<SubCell> sub_[kFinestLevel + 1];  // open cells of each finer level ([0] unused)
+  double side_[kFinestLevel + 1];
+  double area_[kFinestLevel + 1];
+  std::vector<Vec2> disks_;        // scratch
+  std::vector<Vec2> child_disks_;  // scratch
+  std::vector<Vec2> nearby_;  // scratch
+};
+
+}  // namespace scallop
