@@ -3,6 +3,8 @@
 // an open cell, so darts over the open cells draw from all of T and the neighbourhoods built
 // afterwards miss nothing; and the points keep s. Spots are probed on a fine lattice, points
 // compared pair by pair. A planted fault (one open cell dropped) must be caught.
+#include "scallop/sampling/cell_darts.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include <vector>
 
 #include "scallop/random/rng.h"
-#include "scallop/sampling/cell_darts.h"
 #include "scallop/sampling/spacing.h"
 
 namespace scallop {
@@ -37,8 +38,8 @@ CellsRun RunCells(uint64_t seed, size_t max_points, double longest = 16.0) {
   run.spacing = SpacingFor(d, 2e4);
   run.outer_radius = (seed % 2 == 0 ? 2.0 : 1.3) * d;
   CellDarts cells(run.domain, d, run.spacing, run.outer_radius);
-  run.points = {{dice.Uniform(run.domain.x0, run.domain.x1),
-                 dice.Uniform(run.domain.y0, run.domain.y1)}};
+  run.points = {
+      {dice.Uniform(run.domain.x0, run.domain.x1), dice.Uniform(run.domain.y0, run.domain.y1)}};
   cells.AddPoint(run.points[0]);
   Rng rng(seed);
   cells.Run(rng, run.points, max_points);

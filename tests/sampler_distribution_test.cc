@@ -13,8 +13,8 @@
 #include "scallop/analysis/point_statistics.h"
 #include "scallop/random/rng.h"
 #include "scallop/sampling/sampler.h"
-#include "scallop/sampling/scalloped_sampler.h"
 #include "scallop/sampling/sampling_problem.h"
+#include "scallop/sampling/scalloped_sampler.h"
 
 namespace scallop {
 namespace {

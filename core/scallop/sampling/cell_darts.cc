@@ -46,10 +46,10 @@ Rect CellDarts::TopCell(int32_t id) const {
 }
 
 int32_t CellDarts::TopCellId(Vec2 p) const {
-  const int64_t column = std::clamp<int64_t>(
-      static_cast<int64_t>((p.x - domain_.x0) / cell_size_), 0, columns_ - 1);
-  const int64_t row = std::clamp<int64_t>(
-      static_cast<int64_t>((p.y - domain_.y0) / cell_size_), 0, rows_ - 1);
+  const int64_t column =
+      std::clamp<int64_t>(static_cast<int64_t>((p.x - domain_.x0) / cell_size_), 0, columns_ - 1);
+  const int64_t row =
+      std::clamp<int64_t>(static_cast<int64_t>((p.y - domain_.y0) / cell_size_), 0, rows_ - 1);
   return static_cast<int32_t>(row * columns_ + column);
 }
 

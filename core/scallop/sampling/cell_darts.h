@@ -89,14 +89,14 @@ class CellDarts {
   std::vector<State> state_;      // per top cell
   std::vector<uint8_t> corners_;  // per top cell: CornersCovered of all disks so far
   std::vector<uint8_t> failures_;
-  std::vector<int32_t> where_;  // per open top cell: its index in open_
-  std::vector<int32_t> open_;   // open top cells
+  std::vector<int32_t> where_;                  // per open top cell: its index in open_
+  std::vector<int32_t> open_;                   // open top cells
   std::vector<SubCell> sub_[kFinestLevel + 1];  // open cells of each finer level ([0] unused)
   double side_[kFinestLevel + 1];
   double area_[kFinestLevel + 1];
   std::vector<Vec2> disks_;        // scratch
   std::vector<Vec2> child_disks_;  // scratch
-  std::vector<Vec2> nearby_;  // scratch
+  std::vector<Vec2> nearby_;       // scratch
 };
 
 }  // namespace scallop

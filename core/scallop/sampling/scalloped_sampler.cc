@@ -70,9 +70,10 @@ class ScallopedSampler {
   // A1 on a plain rectangle runs its bulk with CellDarts. The plane's problems (fixed and inert
   // points, covered and stop rectangles) and tori keep the neighbourhoods throughout.
   bool UsesCells() const {
-    return choice_ == CandidateChoice::kByArea && bulk_ == A1Bulk::kCells && !problem_.domain.torus &&
-           problem_.fixed_points.empty() && problem_.inert_points.empty() &&
-           problem_.covered_rects.empty() && !problem_.stop_when_covered;
+    return choice_ == CandidateChoice::kByArea && bulk_ == A1Bulk::kCells &&
+           !problem_.domain.torus && problem_.fixed_points.empty() &&
+           problem_.inert_points.empty() && problem_.covered_rects.empty() &&
+           !problem_.stop_when_covered;
   }
 
   // The same process as AddPoint and DrawFrom, with cells for all but its last voids: the
@@ -96,7 +97,8 @@ class ScallopedSampler {
     cells.ForEachOpenCell([&](const Rect& cell) {
       const Vec2 centre{0.5 * (cell.x0 + cell.x1), 0.5 * (cell.y0 + cell.y1)};
       grid_.ForEachNear(centre, outer_radius_ + cell.Width(), [&](int32_t index, Vec2 q) {
-        if (SquaredDistance(cell, q) <= outer_radius_ * outer_radius_) near_open[static_cast<size_t>(index)] = 1;
+        if (SquaredDistance(cell, q) <= outer_radius_ * outer_radius_)
+          near_open[static_cast<size_t>(index)] = 1;
       });
     });
     for (size_t i = 0; i < points_.size(); ++i) {
@@ -317,8 +319,8 @@ class ScallopedSampler {
 
 }  // namespace
 
-std::vector<Vec2> SampleScalloped(const SamplingProblem& problem, CandidateChoice choice,
-                                  Rng& rng, A1Bulk bulk) {
+std::vector<Vec2> SampleScalloped(const SamplingProblem& problem, CandidateChoice choice, Rng& rng,
+                                  A1Bulk bulk) {
   return ScallopedSampler(problem, choice, bulk, rng).Run();
 }
 

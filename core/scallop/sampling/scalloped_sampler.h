@@ -31,7 +31,7 @@ enum class A1Bulk {
 // `bulk` matters for kByArea only.
 // REQUIRES: a problem that ValidateSamplerOptions accepted.
 // Cost: A1 O(N log N) (a sum tree over areas; with cells, O(N) expected for the bulk), A2 O(N).
-std::vector<Vec2> SampleScalloped(const SamplingProblem& problem, CandidateChoice choice,
-                                  Rng& rng, A1Bulk bulk = A1Bulk::kCells);
+std::vector<Vec2> SampleScalloped(const SamplingProblem& problem, CandidateChoice choice, Rng& rng,
+                                  A1Bulk bulk = A1Bulk::kCells);
 
 }  // namespace scallop
