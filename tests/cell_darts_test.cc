@@ -127,6 +127,28 @@ TEST(CellDartsTest, HandOffLeavesOnlyFinestCellsAndTheyHoldT) {
   std::printf("open cells at the hand-off over 6 runs: %d\n", open_cells);
 }
 
+// A domain that ends just past a cell line leaves a column of cells almost wholly outside it,
+// which darts nearly always miss through the edge: they must still be split and retired (the
+// benchmark's 1k-point square, 35.36 d a side, once hung here).
+TEST(CellDartsTest, FinishesWhenTheDomainEndsJustPastACellLine) {
+  const double d = 1.0;
+  const double cell = d / std::sqrt(2.0) * (1.0 - 1e-9);
+  for (const double side : {std::sqrt(1000 / 0.8), 50 * cell, 50 * cell + 1e-9, 21 * cell}) {
+    const Rect domain{0.0, 0.0, side, side};
+    const double spacing = SpacingFor(d, side);
+    CellDarts cells(domain, d, spacing, 2 * d);
+    std::vector<Vec2> points = {{side / 2, side / 2}};
+    cells.AddPoint(points[0]);
+    Rng rng(7);
+    cells.Run(rng, points);
+    CellsRun run{domain, spacing, 2 * d, points, {}};
+    cells.ForEachOpenCell([&](const Rect& c) { run.open.push_back(c); });
+    int spots_in_t = 0;
+    EXPECT_FALSE(SpotOfTOutside(run, run.open, &spots_in_t, 6.0).has_value()) << side;
+    EXPECT_GT(points.size(), 0.6 * side * side) << side;
+  }
+}
+
 TEST(CellDartsTest, PlantedMissingCellIsCaught) {
   int caught = 0;
   for (uint64_t seed = 1; seed <= 10; ++seed) {

@@ -39,6 +39,11 @@ CellDarts::CellDarts(const Rect& domain, double min_distance, double spacing, do
   }
 }
 
+Rect CellDarts::InDomain(const Rect& cell) const {
+  return {std::max(cell.x0, domain_.x0), std::max(cell.y0, domain_.y0),
+          std::min(cell.x1, domain_.x1), std::min(cell.y1, domain_.y1)};
+}
+
 Rect CellDarts::TopCell(int32_t id) const {
   const double x = domain_.x0 + static_cast<double>(id % columns_) * cell_size_;
   const double y = domain_.y0 + static_cast<double>(id / columns_) * cell_size_;
@@ -163,16 +168,19 @@ void CellDarts::AddPoint(Vec2 p) {
       const auto id = static_cast<int32_t>(row * columns_ + column);
       const State state = state_[static_cast<size_t>(id)];
       if (state == kClosed || state == kSplit) continue;
-      const Rect cell = TopCell(id);
+      // Only the part in the domain can hold spots of T; a cell that starts on the domain's
+      // far edge has none.
+      const Rect cell = InDomain(TopCell(id));
+      if (!(cell.x0 < cell.x1 && cell.y0 < cell.y1)) continue;
       const double distance_squared = SquaredDistanceTo(cell, p);
       if (state == kUntouched) {
         if (distance_squared > outer_squared_) continue;
+        // Untouched, the cell was beyond r' (> s) of every earlier point: p alone can cover
+        // corners of it, and if it covers all four it covers the cell (disks are convex).
         Open(id);
-        GatherDisks(cell);
-        uint8_t corners = 0;
-        for (const Vec2& disk : disks_) corners |= CornersCovered(cell, disk);
+        const uint8_t corners = CornersCovered(cell, p);
         corners_[static_cast<size_t>(id)] = corners;
-        if (corners == 15 && Covered(cell)) Close(id);
+        if (corners == 15) Close(id);
         continue;
       }
       if (!(distance_squared < spacing_squared_)) continue;
@@ -195,6 +203,7 @@ void CellDarts::Missed(int level, size_t index) {
     cell = TopCell(id);
     Close(id);
     state_[static_cast<size_t>(id)] = kSplit;
+    GatherDisks(cell);
   } else {
     std::vector<SubCell>& cells = sub_[static_cast<size_t>(level)];
     SubCell& sub = cells[index];
@@ -203,7 +212,7 @@ void CellDarts::Missed(int level, size_t index) {
     GatherDisks(cell);
     if (level == kFinestLevel) {
       // The finest cells are not split: retested now and then, else left to the caller.
-      if (Covered(cell)) {
+      if (Covered(InDomain(cell))) {
         sub = cells.back();
         cells.pop_back();
       }
@@ -212,13 +221,12 @@ void CellDarts::Missed(int level, size_t index) {
     sub = cells.back();
     cells.pop_back();
   }
-  if (level == 0) GatherDisks(cell);
   const double half = 0.5 * (cell.x1 - cell.x0);
   for (int quarter = 0; quarter < 4; ++quarter) {
     const double x = cell.x0 + ((quarter & 1) ? half : 0.0);
     const double y = cell.y0 + ((quarter & 2) ? half : 0.0);
     if (x >= domain_.x1 || y >= domain_.y1) continue;  // wholly outside the domain
-    const Rect child{x, y, x + half, y + half};
+    const Rect child = InDomain({x, y, x + half, y + half});
     // Only the disks that reach the child: the crossing test is cubic in their number.
     child_disks_.clear();
     for (const Vec2& disk : disks_) {
@@ -232,6 +240,7 @@ void CellDarts::Run(Rng& rng, std::vector<Vec2>& placed, size_t max_points) {
   // A safety valve: should darts ever stall, the caller's exact neighbourhoods take over early.
   constexpr int64_t kMaxMissesInARow = 1 << 20;
   int64_t misses_in_a_row = 0;
+  const double spacing = std::sqrt(spacing_squared_);
   while (placed.size() < max_points) {
     double coarse = static_cast<double>(open_.size()) * area_[0];
     for (int level = 1; level < kFinestLevel; ++level) {
@@ -261,11 +270,13 @@ void CellDarts::Run(Rng& rng, std::vector<Vec2>& placed, size_t max_points) {
     }
     const double u = rng.Uniform();
     const Vec2 dart{cell.x0 + u * side_[level], cell.y0 + rng.Uniform() * side_[level]};
-    if (!domain_.Contains(dart)) continue;
+    // Outside the domain is a miss too: a cell mostly outside it is then split, and its
+    // children wholly outside are dropped.
+    const bool inside = domain_.Contains(dart);
     // In T: no point within s (most darts stop here), and one within r'. GatherNear keeps
     // exactly the points closer than its limit, so the counts answer both.
-    const double spacing = std::sqrt(spacing_squared_);
-    const bool available = grid_.GatherNear(dart, spacing, spacing_squared_, -1, nearby_) == 0;
+    const bool available =
+        inside && grid_.GatherNear(dart, spacing, spacing_squared_, -1, nearby_) == 0;
     // A dart beyond r' of every point counts as a miss too: splitting then isolates such
     // spots, which the caller's neighbourhoods finish like any other.
     if (!available || grid_.GatherNear(dart, outer_radius_, outer_squared_, -1, nearby_) == 0) {

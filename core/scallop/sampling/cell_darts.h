@@ -64,6 +64,8 @@ class CellDarts {
   };
 
   Rect TopCell(int32_t id) const;
+  // The part of `cell` in the (closed) domain: the only part that can hold spots of T.
+  Rect InDomain(const Rect& cell) const;
   int32_t TopCellId(Vec2 p) const;
   void Open(int32_t id);
   void Close(int32_t id);
