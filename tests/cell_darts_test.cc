@@ -112,7 +112,7 @@ TEST(CellDartsTest, OpenCellsHoldEverySpotOfTThroughoutARun) {
 }
 
 TEST(CellDartsTest, HandOffLeavesOnlyFinestCellsAndTheyHoldT) {
-  // On 20 to 40 d squares some thin voids are usually left to the neighbourhoods.
+  // On rectangles of up to 40 d a side some thin voids are usually left to the neighbourhoods.
   int open_cells = 0;
   for (uint64_t seed = 100; seed < 106; ++seed) {
     const CellsRun run = RunCells(seed, SIZE_MAX, 40.0);
