@@ -30,7 +30,7 @@ namespace scallop {
 
 class CellDarts {
  public:
-  static constexpr int kFinestLevel = 8;      // cells 2^-6 of the grid's side
+  static constexpr int kFinestLevel = 8;      // cells 2^-8 of the grid's side
   static constexpr int kFailuresToSplit = 6;  // darts a cell misses before it is split or retested
 
   // REQUIRES: a non-empty rectangle, 0 < min_distance <= spacing < outer_radius <= 2 spacing.

@@ -121,10 +121,7 @@ class ScallopedSampler {
       const double limit = other < index ? 2 * outer_radius_ : reach;
       if (distance_squared < limit * limit) nearby_.push_back({distance_squared, other, q});
     });
-    std::sort(nearby_.begin(), nearby_.end(), [](const Nearby& a, const Nearby& b) {
-      return a.distance_squared != b.distance_squared ? a.distance_squared < b.distance_squared
-                                                      : a.index < b.index;
-    });
+    SortNearestFirst(nearby_);
     for (const Nearby& n : nearby_) {
       if (region.empty()) break;
       region.SubtractDisk(n.position, n.index < index ? outer_radius_ : spacing_);
@@ -210,13 +207,7 @@ class ScallopedSampler {
       }
     });
     CutNeighbourhoods(x);
-    // Nearest first: their disks cover the most of the annulus, so the
-    // region shrinks (or empties) early and most later disks miss it cheaply.
-    // Ties are broken by index so the order is a pure function of the points.
-    std::sort(nearby_.begin(), nearby_.end(), [](const Nearby& a, const Nearby& b) {
-      return a.distance_squared != b.distance_squared ? a.distance_squared < b.distance_squared
-                                                      : a.index < b.index;
-    });
+    SortNearestFirst(nearby_);
     for (const Nearby& n : nearby_) {
       if (region.empty()) break;
       region.SubtractDisk(n.position, outer_radius_);
@@ -292,6 +283,16 @@ class ScallopedSampler {
     int32_t index;
     Vec2 position;
   };
+
+  // Nearest first: their disks cover the most of an annulus, so a region shrinks (or empties)
+  // early and most later disks miss it cheaply. Ties are broken by index so the order is a pure
+  // function of the points.
+  static void SortNearestFirst(std::vector<Nearby>& nearby) {
+    std::sort(nearby.begin(), nearby.end(), [](const Nearby& a, const Nearby& b) {
+      return a.distance_squared != b.distance_squared ? a.distance_squared < b.distance_squared
+                                                      : a.index < b.index;
+    });
+  }
 
   const SamplingProblem& problem_;
   const CandidateChoice choice_;
