@@ -20,7 +20,8 @@ enum class CandidateChoice {
 // tests/sampler_distribution_test.cc compare them).
 enum class A1Bulk {
   // CellDarts (cell_darts.h) until only thin voids are left, then neighbourhoods, on plain
-  // rectangles (no fixed or inert points, covered or stop rectangles); elsewhere as below.
+  // rectangles (no fixed or inert points, covered or stop rectangles) at density 1.1 and up;
+  // elsewhere as below.
   kCells,
   // The paper's neighbourhoods throughout.
   kNeighbourhoods,
