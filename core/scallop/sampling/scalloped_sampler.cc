@@ -76,10 +76,9 @@ class ScallopedSampler {
   // point, most darts land beyond it, and cells were slower (0.6-0.75x at 1.05, 1.35x at 1.1).
   bool UsesCells() const {
     return choice_ == CandidateChoice::kByArea && bulk_ == A1Bulk::kCells &&
-           problem_.density >= kMinCellsDensity &&
-           !problem_.domain.torus && problem_.fixed_points.empty() &&
-           problem_.inert_points.empty() && problem_.covered_rects.empty() &&
-           !problem_.stop_when_covered;
+           problem_.density >= kMinCellsDensity && !problem_.domain.torus &&
+           problem_.fixed_points.empty() && problem_.inert_points.empty() &&
+           problem_.covered_rects.empty() && !problem_.stop_when_covered;
   }
 
   // The same process as AddPoint and DrawFrom, with cells for all but its last voids: the
