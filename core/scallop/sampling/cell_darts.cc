@@ -11,9 +11,6 @@ namespace {
 // rounding of the tests below (a few ulps), far below anything a sampler could notice.
 constexpr double kCoverageMargin = 1e-9;
 
-// Squared distance from p to the closed rectangle `cell`.
-double SquaredDistanceTo(const Rect& cell, Vec2 p) { return SquaredDistance(cell, p); }
-
 }  // namespace
 
 CellDarts::CellDarts(const Rect& domain, double min_distance, double spacing, double outer_radius)
@@ -91,7 +88,7 @@ void CellDarts::GatherDisks(const Rect& cell) {
   const size_t count = grid_.GatherNear(centre, reach, reach * reach, -1, nearby_);
   disks_.clear();
   for (size_t k = 0; k < count; ++k) {
-    if (SquaredDistanceTo(cell, nearby_[k]) < spacing_squared_) disks_.push_back(nearby_[k]);
+    if (SquaredDistance(cell, nearby_[k]) < spacing_squared_) disks_.push_back(nearby_[k]);
   }
 }
 
@@ -172,7 +169,7 @@ void CellDarts::AddPoint(Vec2 p) {
       // far edge has none.
       const Rect cell = InDomain(TopCell(id));
       if (!(cell.x0 < cell.x1 && cell.y0 < cell.y1)) continue;
-      const double distance_squared = SquaredDistanceTo(cell, p);
+      const double distance_squared = SquaredDistance(cell, p);
       if (state == kUntouched) {
         if (distance_squared > outer_squared_) continue;
         // Untouched, the cell was beyond r' (> s) of every earlier point: p alone can cover
@@ -230,7 +227,7 @@ void CellDarts::Missed(int level, size_t index) {
     // Only the disks that reach the child: the crossing test is cubic in their number.
     child_disks_.clear();
     for (const Vec2& disk : disks_) {
-      if (SquaredDistanceTo(child, disk) < spacing_squared_) child_disks_.push_back(disk);
+      if (SquaredDistance(child, disk) < spacing_squared_) child_disks_.push_back(disk);
     }
     if (!Covered(child, child_disks_)) sub_[static_cast<size_t>(level + 1)].push_back({x, y, 0});
   }

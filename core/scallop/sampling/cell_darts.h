@@ -38,11 +38,14 @@ class CellDarts {
 
   // Adds a point placed by the caller (the seed): it closes, covers and opens cells as a
   // dart does. REQUIRES: p in the domain, at least `spacing` from every point added.
+  // Cost: O((r' / d)^2) cells, a coverage test for each whose corners it completes.
   void AddPoint(Vec2 p);
 
   // Throws darts until no cell coarser than the finest level is open, or `placed` holds
   // `max_points` (tests stop early to check the cells mid-run), appending each kept dart to
-  // `placed` (after adding it). Draws from `rng` only.
+  // `placed` (after adding it). Draws from `rng` only. Cost, measured on a 1118 d square at
+  // r' = 2 d: 8.4 darts and 6.5 coverage tests a point (a test is cubic in the handful of disks
+  // near a cell), and it placed 99.93% of the points; O(N) expected.
   void Run(Rng& rng, std::vector<Vec2>& placed, size_t max_points = SIZE_MAX);
 
   // Calls visit(cell) for every open cell: together they hold every spot of T.
@@ -77,7 +80,8 @@ class CellDarts {
   // that reaches the cell is among them.
   bool Covered(const Rect& cell, std::span<const Vec2> disks) const;
   bool Covered(const Rect& cell) const { return Covered(cell, disks_); }
-  // After a dart missed T in `cell` of `level` (position `index` in its list).
+  // After a dart missed T in the open cell at `index` of `level`'s list: counts the miss, and
+  // every kFailuresToSplit misses splits the cell (at the finest level, retests it).
   void Missed(int level, size_t index);
 
   Rect domain_;
