@@ -15,6 +15,7 @@ constexpr double kCoverageMargin = 1e-9;
 
 CellDarts::CellDarts(const Rect& domain, double min_distance, double spacing, double outer_radius)
     : domain_(domain),
+      spacing_(spacing),
       spacing_squared_(spacing * spacing),
       covered_squared_(spacing * spacing * (1.0 - kCoverageMargin)),
       outer_radius_(outer_radius),
@@ -84,7 +85,9 @@ uint8_t CellDarts::CornersCovered(const Rect& cell, Vec2 disk) const {
 
 void CellDarts::GatherDisks(const Rect& cell) {
   const Vec2 centre{0.5 * (cell.x0 + cell.x1), 0.5 * (cell.y0 + cell.y1)};
-  const double reach = std::sqrt(spacing_squared_) + 0.5 * std::sqrt(2.0) * cell.Width() * 1.01;
+  // s beyond the half-diagonal (with 1% to spare for rounding): every disk that reaches a
+  // corner of the cell has its centre this close to the cell's centre.
+  const double reach = spacing_ + 0.5 * std::sqrt(2.0) * cell.Width() * 1.01;
   const size_t count = grid_.GatherNear(centre, reach, reach * reach, -1, nearby_);
   disks_.clear();
   for (size_t k = 0; k < count; ++k) {
@@ -237,7 +240,6 @@ void CellDarts::Run(Rng& rng, std::vector<Vec2>& placed, size_t max_points) {
   // A safety valve: should darts ever stall, the caller's exact neighbourhoods take over early.
   constexpr int64_t kMaxMissesInARow = 1 << 20;
   int64_t misses_in_a_row = 0;
-  const double spacing = std::sqrt(spacing_squared_);
   while (placed.size() < max_points) {
     double coarse = static_cast<double>(open_.size()) * area_[0];
     for (int level = 1; level < kFinestLevel; ++level) {
@@ -273,7 +275,7 @@ void CellDarts::Run(Rng& rng, std::vector<Vec2>& placed, size_t max_points) {
     // In T: no point within s (most darts stop here), and one within r'. GatherNear keeps
     // exactly the points closer than its limit, so the counts answer both.
     const bool available =
-        inside && grid_.GatherNear(dart, spacing, spacing_squared_, -1, nearby_) == 0;
+        inside && grid_.GatherNear(dart, spacing_, spacing_squared_, -1, nearby_) == 0;
     // A dart beyond r' of every point counts as a miss too: splitting then isolates such
     // spots, which the caller's neighbourhoods finish like any other.
     if (!available || grid_.GatherNear(dart, outer_radius_, outer_squared_, -1, nearby_) == 0) {

@@ -85,6 +85,7 @@ class CellDarts {
   void Missed(int level, size_t index);
 
   Rect domain_;
+  double spacing_;
   double spacing_squared_;
   double covered_squared_;  // a disk "surely" holds spots this close to its centre
   double outer_radius_;
