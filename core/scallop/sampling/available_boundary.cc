@@ -2,6 +2,7 @@
 #include "scallop/sampling/available_boundary.h"
 
 #include <algorithm>
+#include <bit>
 
 namespace scallop {
 
@@ -9,6 +10,19 @@ void AvailableBoundary::Grow(size_t count) {
   const size_t size = std::max(count, 2 * spare_.size());
   ranges_.resize(size);
   spare_.resize(size);
+}
+
+void AvailableBoundary::ResetToBins(uint64_t bins) {
+  constexpr size_t kMostRuns = 32;  // of 64 bits
+  if (ranges_.size() < kMostRuns + 2) Grow(kMostRuns + 2);
+  count_ = 0;
+  while (bins != 0) {
+    // Adding the lowest set bit carries through the lowest run and clears it.
+    const uint64_t run = bins & ~(bins + (bins & -bins));
+    bins &= ~run;
+    ranges_[count_++] = {std::countr_zero(run) / kBinsPerKey,
+                         (64 - std::countl_zero(run)) / kBinsPerKey};
+  }
 }
 
 double AvailableBoundary::SampleKey(Rng& rng) const {

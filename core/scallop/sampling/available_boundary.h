@@ -21,6 +21,10 @@ namespace scallop {
 
 inline constexpr double kFullTurnKey = 4.0;  // the pseudo-angle of a whole turn
 
+// The key circle in 64 bins: bin k holds keys k / 16 to (k + 1) / 16, bounds
+// exact in binary, so a key's bin is floor(16 key) without rounding.
+inline constexpr double kBinsPerKey = 16.0;
+
 // The "diamond angle" of a non-zero direction: 0 along +x, 1 along +y, 2
 // along -x, 3 along -y, in [0, 4), increasing counterclockwise.
 inline double PseudoAngle(Vec2 v) {
@@ -73,6 +77,12 @@ inline Doubles PseudoAngles(Doubles x, Doubles y) {
   return base + numerator / denominator;
 }
 
+// A closed arc as the keys of its ends, counterclockwise from from_key to
+// to_key; from_key > to_key when it passes key 0.
+struct KeyArc {
+  double from_key, to_key;
+};
+
 class AvailableBoundary {
  public:
   struct Range {
@@ -95,6 +105,10 @@ class AvailableBoundary {
   void SubtractArc(double from_key, double to_key);
   // Removes everything.
   void Clear() { count_ = 0; }
+
+  // The bins set in `bins` (bit k: bin k), a range to each run of bins: with
+  // all bits set, the whole circle. O(runs).
+  void ResetToBins(uint64_t bins);
 
   // A direction drawn uniformly by angle from the available part, with its
   // key; |direction.x| + |direction.y| = 1. REQUIRES: !empty(). O(ranges)

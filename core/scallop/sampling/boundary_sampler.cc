@@ -1,28 +1,34 @@
 // A3 implementation: a grid of points, a pool of candidates picked uniformly
 // at random, and for each candidate its available boundary, computed once
-// from its neighbours and then consumed by placing points on it.
+// from its neighbours (first by bins, then exactly where bins are left) and
+// then consumed by placing points on it.
 #include "scallop/sampling/boundary_sampler.h"
 
 #include <algorithm>
 #include <cmath>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include <type_traits>
 
 #include "scallop/sampling/available_boundary.h"
+#include "scallop/sampling/boundary_arcs.h"
 #include "scallop/sampling/boundary_grid.h"
+#include "scallop/sampling/candidate_boundary.h"
 #include "scallop/sampling/point_grid.h"
 #include "scallop/sampling/spacing.h"
 
 namespace scallop {
 namespace {
 
-// Removes from `boundary` (a circle of radius `radius` about `centre`) the
-// arcs that fall outside the half-open rectangle: beyond an edge at distance
-// a along outward normal n, the arc from a n - h n' to a n + h n'
-// (counterclockwise, n' = n turned left, h = sqrt(radius^2 - a^2)).
-void ClipToRectangle(const Rect& rect, Vec2 centre, double radius, AvailableBoundary& boundary) {
+// Appends to `arcs` the arcs of the circle of radius `radius` about `centre`
+// that fall outside the half-open rectangle: beyond an edge at distance a
+// along outward normal n, the arc from a n - h n' to a n + h n'
+// (counterclockwise, n' = n turned left, h = sqrt(radius^2 - a^2)). Returns
+// false, appending nothing more, when the whole circle is outside.
+bool ClipToRectangle(const Rect& rect, Vec2 centre, double radius, std::vector<KeyArc>& arcs) {
+  // Most circles lie inside: four comparisons settle them.
+  if (std::min(centre.x - rect.x0, rect.x1 - centre.x) >= radius &&
+      std::min(centre.y - rect.y0, rect.y1 - centre.y) >= radius) {
+    return true;
+  }
   const struct {
     Vec2 normal;
     double distance;
@@ -32,59 +38,29 @@ void ClipToRectangle(const Rect& rect, Vec2 centre, double radius, AvailableBoun
                 {{0, -1}, centre.y - rect.y0}};
   for (const auto& [n, a] : edges) {
     if (a >= radius) continue;
-    if (a <= -radius) {
-      boundary.Clear();
-      return;
-    }
+    if (a <= -radius) return false;
     const double h = std::sqrt(radius * radius - a * a);
     const Vec2 left{-n.y, n.x};
-    boundary.SubtractArc(a * n - h * left, a * n + h * left);
+    arcs.push_back({PseudoAngle(a * n - h * left), PseudoAngle(a * n + h * left)});
   }
+  return true;
 }
 
-// {sqrt(t[0]), sqrt(t[1])}: one packed square root where SSE2 has it (the
-// same correctly rounded bits), where std::sqrt gave two, each behind a
-// branch that keeps errno for negative inputs (t >= 0 here).
-Doubles SquareRoots(Doubles t) {
-#if defined(__SSE2__)
-  return _mm_sqrt_pd(t);
-#else
-  return Doubles{std::sqrt(t[0]), std::sqrt(t[1])};
-#endif
-}
-
-// The arc of the candidate's circle (radius s) that the disk of radius s
-// about a neighbour at `offset` (|offset| < 2 s) covers, as the keys
-// (pseudo-angles) of its ends.
-struct Arc {
-  double from_key, to_key;
-};
-
-// The arcs that the neighbours at offset0 and offset1 from the candidate
-// cover, into arcs[0] and arcs[1]. Each is centred on the direction
-// o = offset, with ends along o -+ k o', k = sqrt(4 s^2 / D^2 - 1). Both at
-// once, in the two lanes of SSE2 registers: the divisions and square roots
-// are most of A3's arithmetic.
-void CoveredArcs(Vec2 offset0, Vec2 offset1, double spacing_squared, Arc* arcs) {
-  const Doubles x = {offset0.x, offset1.x}, y = {offset0.y, offset1.y};
-  const Doubles four_s2 = {4 * spacing_squared, 4 * spacing_squared};
-  const Doubles t = four_s2 / (x * x + y * y) - 1.0;
-  const Doubles k = SquareRoots(t);
-  // o' = (-y, x); from = o - k o', to = o + k o'.
-  const Doubles from_key = PseudoAngles(x + k * y, y - k * x);
-  const Doubles to_key = PseudoAngles(x - k * y, y + k * x);
-  for (int lane = 0; lane < 2; ++lane) arcs[lane] = {from_key[lane], to_key[lane]};
-}
-
-// The arc of the candidate's circle that a point placed on it, in direction
-// `direction` (any length), covers with its disk: half-width pi/3 about it.
-// Rotating by -+60 degrees needs no trigonometry: cos = 1/2, sin = sqrt(3)/2.
-Arc PlacedArc(Vec2 direction) {
-  constexpr double kSin60 = 0.86602540378443864676372317075294;
-  const Vec2 half = 0.5 * direction, turned = {-kSin60 * direction.y, kSin60 * direction.x};
-  const Doubles keys = PseudoAngles(Doubles{half.x - turned.x, half.x + turned.x},
-                                    Doubles{half.y - turned.y, half.y + turned.y});
-  return {keys[0], keys[1]};
+// Whether every point of `points` is at least sqrt(limit_squared) from x:
+// two at a time in SSE2 lanes, without a branch per point.
+bool FarFromAll(Vec2 x, const Vec2* points, size_t count, double limit_squared) {
+  Doubles nearest = {INFINITY, INFINITY};
+  const Doubles px = {x.x, x.x}, py = {x.y, x.y};
+  size_t k = 0;
+  for (; k + 1 < count; k += 2) {
+    const Doubles dx = Doubles{points[k].x, points[k + 1].x} - px;
+    const Doubles dy = Doubles{points[k].y, points[k + 1].y} - py;
+    const Doubles squared = dx * dx + dy * dy;
+    nearest = squared < nearest ? squared : nearest;
+  }
+  bool far = nearest[0] >= limit_squared && nearest[1] >= limit_squared;
+  if (k < count) far = far && SquaredDistance(points[k], x) >= limit_squared;
+  return far;
 }
 
 // A key interval this wide (about a draw's key) is given up when a placement
@@ -149,7 +125,8 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
   // Neighbours of the candidate, as images near it: nearby[0, nearby_count).
   std::vector<Vec2> nearby;
   size_t nearby_count = 0;
-  std::vector<Arc> arcs;  // arcs[k]: the arc nearby[k] covers
+  std::vector<KeyArc> outside_arcs;  // of the candidate's circle, outside the rectangle
+  CandidateBoundary candidate_boundary(spacing);
   while (!candidates.empty() && !(stop && pending_near_stop == 0)) {
     // Uniform choice among candidates, as the paper prescribes.
     const size_t pick = rng.Below(candidates.size());
@@ -158,21 +135,13 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
     candidates.pop_back();
     pending_near_stop -= reaches_stop(p);
 
-    boundary.Reset();
-    if (!domain.torus) ClipToRectangle(domain.rect, p, spacing, boundary);
+    outside_arcs.clear();
+    const bool inside = domain.torus || ClipToRectangle(domain.rect, p, spacing, outside_arcs);
     nearby_count = grid.GatherNear(p, 2 * spacing, 4 * spacing_squared, index, nearby);
-    // The arcs first, the subtractions after: the arcs' divisions and square
-    // roots then overlap instead of each waiting for the cut before it.
-    if (arcs.size() < nearby_count + 1) arcs.resize(nearby_count + 1);
-    for (size_t n = 0; n < nearby_count; n += 2) {
-      // An odd count repeats the last neighbour in the spare lane.
-      const Vec2 second = nearby[std::min(n + 1, nearby_count - 1)];
-      CoveredArcs(nearby[n] - p, second - p, spacing_squared, &arcs[n]);
-    }
-    for (size_t n = 0; n < nearby_count && !boundary.empty(); ++n) {
-      // Once nothing is left the rest of the neighbours cannot matter.
-      const Arc& arc = arcs[n];
-      boundary.SubtractArc(arc.from_key, arc.to_key);
+    if (inside) {
+      candidate_boundary.Build(p, outside_arcs, std::span(nearby.data(), nearby_count), boundary);
+    } else {
+      boundary.Clear();
     }
 
     int rejected = 0;  // in a row
@@ -183,8 +152,12 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
       // The margin in `spacing` makes these checks pass; they stay because the
       // contract is promised on the returned doubles, not on an argument.
       bool valid = (domain.torus || domain.rect.Contains(x)) && !InCoveredRect(problem, x);
-      for (size_t k = 0; valid && k < nearby_count; ++k) {
-        valid = SquaredDistance(grid.NearestImage(x, nearby[k]), x) >= d_squared;
+      if constexpr (std::is_same_v<Grid, BoundaryGrid>) {
+        valid = valid && FarFromAll(x, nearby.data(), nearby_count, d_squared);
+      } else {
+        for (size_t k = 0; valid && k < nearby_count; ++k) {
+          valid = SquaredDistance(grid.NearestImage(x, nearby[k]), x) >= d_squared;
+        }
       }
       valid = valid && SquaredDistance(grid.NearestImage(x, p), x) >= d_squared;
       if (!valid) {
@@ -203,7 +176,7 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
       nearby[nearby_count++] = x;
       // Only the arc of x's disk at distance exactly `spacing` from the
       // candidate is removed: half-width acos(1/2) = pi/3.
-      const Arc placed = PlacedArc(direction);
+      const KeyArc placed = PlacedArc(direction);
       boundary.SubtractArc(placed.from_key, placed.to_key);
     }
   }

@@ -1,0 +1,262 @@
+// A3's candidate boundary by bins (arc_bins.h, candidate_boundary.h) against
+// brute force: the bins of an arc and of a neighbour's table cell hold for
+// the keys A3 computes, and building a boundary by bins leaves exactly the
+// ranges that cutting every arc leaves. Each check is shown to catch a
+// planted fault.
+#include "scallop/sampling/candidate_boundary.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "scallop/random/rng.h"
+#include "scallop/sampling/arc_bins.h"
+#include "scallop/sampling/available_boundary.h"
+#include "scallop/sampling/boundary_arcs.h"
+
+namespace scallop {
+namespace {
+
+// Whether the closed arc holds the whole closed key interval [lo, hi].
+bool ArcHolds(const KeyArc& arc, double lo, double hi) {
+  if (arc.from_key <= arc.to_key) return arc.from_key <= lo && hi <= arc.to_key;
+  return arc.from_key <= lo || hi <= arc.to_key;  // passes key 0; hi <= 4
+}
+
+// Whether the closed arc meets the open key interval (lo, hi). (An arc that
+// only touches a bin's bound cannot change a range: the range beyond that
+// bound either runs on into the next bin, which the arc then meets, or ends
+// there, open.)
+bool ArcMeets(const KeyArc& arc, double lo, double hi) {
+  if (arc.from_key <= arc.to_key) return arc.from_key < hi && lo < arc.to_key;
+  return arc.from_key < hi || lo < arc.to_key;
+}
+
+// How many bins `bins` gets wrong for `arc`: covered bins the arc does not
+// hold whole, and bins whose inside it meets that are not marked reached.
+int BinErrors(const KeyArc& arc, const ArcBins& bins) {
+  int errors = 0;
+  for (int k = 0; k < 64; ++k) {
+    const double lo = k / kBinsPerKey, hi = (k + 1) / kBinsPerKey;
+    const bool covered = (bins.covered >> k) & 1, reached = (bins.reached >> k) & 1;
+    if (covered && !ArcHolds(arc, lo, hi)) ++errors;
+    if (!reached && ArcMeets(arc, lo, hi)) ++errors;
+  }
+  return errors;
+}
+
+// Keys drawn to hit the awkward places often: bin bounds, 0 and 4.
+double AwkwardKey(Rng& rng) {
+  const double u = rng.Uniform();
+  if (u < 0.3) return static_cast<double>(rng.Below(65)) / kBinsPerKey;  // a bin bound
+  if (u < 0.4) return std::nextafter(static_cast<double>(rng.Below(64) + 1) / kBinsPerKey, 0.0);
+  return rng.Uniform(0.0, kFullTurnKey);
+}
+
+TEST(ArcBinsTest, BinsOfHoldForRandomArcs) {
+  Rng rng(11);
+  int arcs_covering_some = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const KeyArc arc = {AwkwardKey(rng), AwkwardKey(rng)};
+    const ArcBins bins = BinsOf(arc);
+    ASSERT_EQ(BinErrors(arc, bins), 0) << arc.from_key << " " << arc.to_key;
+    ASSERT_EQ(bins.covered & ~bins.reached, 0u);
+    arcs_covering_some += bins.covered != 0;
+  }
+  EXPECT_GT(arcs_covering_some, 10000);  // the bins are not left empty to be safe
+}
+
+TEST(ArcBinsTest, BinErrorsCatchesPlantedFaults) {
+  const KeyArc arc = {0.30, 0.90};  // bins 4.8 to 14.4: covers 5 to 13
+  const ArcBins bins = BinsOf(arc);
+  EXPECT_EQ(BinErrors(arc, bins), 0);
+  EXPECT_GT(BinErrors(arc, {bins.covered | (bins.covered << 1), bins.reached}), 0);
+  EXPECT_GT(BinErrors(arc, {bins.covered, bins.reached & ~(uint64_t{1} << 4)}), 0);
+}
+
+// A neighbour's offset from the candidate, in units of s, with |o| < 2:
+// mostly uniform over the annulus A3 sees (1 to 2), and often at the
+// table's cell bounds, on the axes, near tangency or near |o| = 1.
+Vec2 AwkwardOffset(Rng& rng) {
+  const double u = rng.Uniform();
+  if (u < 0.15) {  // on cell bounds of the table (sixteenths)
+    const Vec2 o = {static_cast<double>(rng.Below(64)) / 16 - 2,
+                    static_cast<double>(rng.Below(64)) / 16 - 2};
+    if (SquaredLength(o) < 4 && SquaredLength(o) > 0) return o;
+  }
+  const double angle = u < 0.25 ? rng.Below(8) * std::numbers::pi / 4 : rng.Uniform(0, 7);
+  double length = std::sqrt(rng.Uniform(1.0, 4.0));
+  if (u > 0.85) length = 2 - std::pow(10.0, -rng.Uniform(1, 15));  // near tangency
+  if (u > 0.95) length = 1 + rng.Uniform(-1e-9, 1e-9);
+  return {length * std::cos(angle), length * std::sin(angle)};
+}
+
+// The arc A3 computes for a neighbour at `offset` (spacing s).
+KeyArc ComputedArc(Vec2 offset, double spacing) {
+  KeyArc arcs[2];
+  CoveredArcs(offset, offset, spacing * spacing, arcs);
+  return arcs[0];
+}
+
+TEST(ArcBinsTest, NeighbourBinsHoldForTheArcsA3Computes) {
+  Rng rng(12);
+  int all_bins_wrong = 0;
+  long covered_bins = 0;
+  // How far from the bins of the computed arc itself the table is, on average.
+  long lost_covered = 0, extra_reached = 0, looked_up = 0;
+  for (const double spacing : {1.0, 1e-3, 7.3, 3e5}) {
+    const NeighbourBins table(spacing);
+    for (int trial = 0; trial < 40000; ++trial) {
+      const Vec2 unit_offset = AwkwardOffset(rng);
+      const Vec2 offset = {unit_offset.x * spacing, unit_offset.y * spacing};
+      if (!(SquaredLength(offset) < 4 * spacing * spacing)) continue;  // Of's REQUIRES
+      const KeyArc arc = ComputedArc(offset, spacing);
+      const ArcBins bins = table.Of(offset);
+      const int errors = BinErrors(arc, bins);
+      all_bins_wrong += errors;
+      EXPECT_EQ(errors, 0) << "offset " << unit_offset.x << ", " << unit_offset.y << " spacing "
+                           << spacing;
+      if (errors != 0) return;
+      covered_bins += std::popcount(bins.covered);
+      const ArcBins exact = BinsOf(arc);
+      lost_covered += std::popcount(exact.covered & ~bins.covered);
+      extra_reached += std::popcount(bins.reached & ~exact.reached);
+      ++looked_up;
+    }
+  }
+  EXPECT_EQ(all_bins_wrong, 0);
+  EXPECT_GT(covered_bins, 0);
+  // Not so cautious as to be useless: measured 0.99 and 1.38 bins an arc.
+  EXPECT_LT(static_cast<double>(lost_covered) / static_cast<double>(looked_up), 1.5);
+  EXPECT_LT(static_cast<double>(extra_reached) / static_cast<double>(looked_up), 2.0);
+}
+
+TEST(ArcBinsTest, NeighbourCheckCatchesAPlantedFault) {
+  // The same check, on a table whose covered bins reach one bin too far:
+  // it must fail for many offsets.
+  Rng rng(13);
+  const NeighbourBins table(1.0);
+  int failures = 0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    const Vec2 offset = AwkwardOffset(rng);
+    ArcBins bins = table.Of(offset);
+    bins.covered |= std::rotl(bins.covered, 1);
+    failures += BinErrors(ComputedArc(offset, 1.0), bins) != 0;
+  }
+  EXPECT_GT(failures, 100);
+}
+
+TEST(AvailableBoundaryBinsTest, ResetToBinsGivesARangeToEachRun) {
+  Rng rng(14);
+  AvailableBoundary boundary;
+  for (int trial = 0; trial < 5000; ++trial) {
+    // Sparse, dense and all-or-nothing masks.
+    uint64_t bins = rng.NextBits();
+    if (trial % 3 == 1) bins &= rng.NextBits();
+    if (trial % 3 == 2) bins |= rng.NextBits();
+    if (trial == 0) bins = 0;
+    if (trial == 1) bins = ~uint64_t{0};
+    boundary.ResetToBins(bins);
+    uint64_t seen = 0;
+    double previous_end = -1;
+    for (const auto& range : boundary.ranges()) {
+      ASSERT_LT(previous_end, range.begin);  // sorted, and no two runs touch
+      previous_end = range.end;
+      for (int k = 0; k < 64; ++k) {
+        const double middle = (k + 0.5) / kBinsPerKey;
+        if (range.begin < middle && middle < range.end) seen |= uint64_t{1} << k;
+      }
+    }
+    ASSERT_EQ(seen, bins);
+  }
+  boundary.ResetToBins(~uint64_t{0});
+  ASSERT_EQ(boundary.ranges().size(), 1u);
+  EXPECT_EQ(boundary.ranges()[0].begin, 0.0);
+  EXPECT_EQ(boundary.ranges()[0].end, kFullTurnKey);
+}
+
+// A candidate at `centre` with neighbours within 2 s, some clustered so that
+// they cover its whole circle, and now and then an arc outside the domain.
+struct Scene {
+  Vec2 centre;
+  std::vector<Vec2> neighbours;
+  std::vector<KeyArc> other_arcs;
+};
+
+Scene RandomScene(Rng& rng, double spacing) {
+  Scene scene;
+  scene.centre = {rng.Uniform(-1e3, 1e3), rng.Uniform(-1e3, 1e3)};
+  const int count = static_cast<int>(rng.Below(14));
+  for (int n = 0; n < count; ++n) {
+    const Vec2 o = AwkwardOffset(rng);
+    const Vec2 q = {scene.centre.x + o.x * spacing, scene.centre.y + o.y * spacing};
+    if (SquaredLength(q - scene.centre) < 4 * spacing * spacing) scene.neighbours.push_back(q);
+  }
+  if (rng.Uniform() < 0.2) scene.other_arcs.push_back({AwkwardKey(rng), AwkwardKey(rng)});
+  return scene;
+}
+
+// The boundary the plain way: every arc cut, in order.
+AvailableBoundary CutEveryArc(const Scene& scene, double spacing, size_t skip = SIZE_MAX) {
+  AvailableBoundary boundary;
+  boundary.Reset();
+  for (const KeyArc& arc : scene.other_arcs) boundary.SubtractArc(arc.from_key, arc.to_key);
+  for (size_t n = 0; n < scene.neighbours.size(); ++n) {
+    if (n == skip) continue;
+    const KeyArc arc = ComputedArc(scene.neighbours[n] - scene.centre, spacing);
+    boundary.SubtractArc(arc.from_key, arc.to_key);
+  }
+  return boundary;
+}
+
+bool SameRanges(const AvailableBoundary& a, const AvailableBoundary& b) {
+  if (a.ranges().size() != b.ranges().size()) return false;
+  for (size_t r = 0; r < a.ranges().size(); ++r) {
+    if (a.ranges()[r].begin != b.ranges()[r].begin || a.ranges()[r].end != b.ranges()[r].end) {
+      return false;
+    }
+  }
+  return true;
+}
+
+TEST(CandidateBoundaryTest, BuildLeavesTheRangesOfCuttingEveryArc) {
+  Rng rng(15);
+  int empty = 0, with_ranges = 0;
+  for (const double spacing : {1.0, 0.37, 1e4}) {
+    CandidateBoundary builder(spacing);
+    AvailableBoundary built;
+    for (int trial = 0; trial < 20000; ++trial) {
+      const Scene scene = RandomScene(rng, spacing);
+      builder.Build(scene.centre, scene.other_arcs, scene.neighbours, built);
+      const AvailableBoundary expected = CutEveryArc(scene, spacing);
+      ASSERT_TRUE(SameRanges(built, expected)) << "trial " << trial << " spacing " << spacing;
+      empty += built.empty();
+      with_ranges += !built.empty();
+    }
+  }
+  // Both outcomes were exercised, many times.
+  EXPECT_GT(empty, 1000);
+  EXPECT_GT(with_ranges, 1000);
+}
+
+TEST(CandidateBoundaryTest, ComparisonCatchesAPlantedMissingArc) {
+  // Leaving one neighbour's arc out must show in the comparison, often.
+  Rng rng(16);
+  CandidateBoundary builder(1.0);
+  AvailableBoundary built;
+  int caught = 0, tried = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Scene scene = RandomScene(rng, 1.0);
+    if (scene.neighbours.empty()) continue;
+    ++tried;
+    builder.Build(scene.centre, scene.other_arcs, scene.neighbours, built);
+    caught += !SameRanges(built, CutEveryArc(scene, 1.0, rng.Below(scene.neighbours.size())));
+  }
+  EXPECT_GT(caught, tried / 4);
+}
+
+}  // namespace
+}  // namespace scallop
