@@ -35,11 +35,13 @@ NeighbourBins::Cells NeighbourBins::Build() {
   // |u - o| <= 1, that is when g(u, o) = u.o - |o|^2 / 2 >= 0.
   constexpr double kMargin = 1e-7;  // in g: bins claimed within it of the arc's end are not
   constexpr double kGrow = 1e-7;    // cells grown by this: o / s is computed as o * (16 / s)
+  constexpr int kSamples = 17;      // directions across a bin, for `reached`
   struct Bin {
-    Vec2 ends[2];        // unit directions at keys k / 16 and (k + 1) / 16
-    Vec2 middle;         // the unit direction halfway between, by angle
-    double first_angle;  // the angle of ends[0], radians
-    double half_angle;   // half the bin's angle, radians, rounded up
+    Vec2 ends[2];            // unit directions at keys k / 16 and (k + 1) / 16
+    Vec2 middle;             // the unit direction halfway between, by angle
+    double half_angle;       // half the bin's angle, radians, rounded up
+    Vec2 samples[kSamples];  // from ends[0] on, `step` radians apart
+    double step;
   };
   std::array<Bin, 64> bins;
   for (int k = 0; k < 64; ++k) {
@@ -56,8 +58,11 @@ NeighbourBins::Cells NeighbourBins::Build() {
     while (angles[1] <= angles[0]) angles[1] += 2 * std::numbers::pi;
     const double middle = (angles[0] + angles[1]) / 2;
     bin.middle = {std::cos(middle), std::sin(middle)};
-    bin.first_angle = angles[0];
     bin.half_angle = (angles[1] - angles[0]) / 2 * (1 + 1e-9) + 1e-12;
+    bin.step = 2 * bin.half_angle / (kSamples - 1);
+    for (int i = 0; i < kSamples; ++i) {
+      bin.samples[i] = {std::cos(angles[0] + i * bin.step), std::sin(angles[0] + i * bin.step)};
+    }
   }
   auto g = [](Vec2 u, Vec2 o) { return Dot(u, o) - SquaredLength(o) / 2; };
   Cells cells;
@@ -88,19 +93,17 @@ NeighbourBins::Cells NeighbourBins::Build() {
         // from the centres first (|dg / d angle| <= |o|, |dg / do| = |u - o|
         // <= 1 + |o|), then, for the bins it lets through, the distance at
         // kSamples directions across the bin, less half a step (the distance
-        // changes by no more than the chord between directions).
+        // changes by no more than the chord between them).
         bool reached = covered;
         if (!covered &&
             g(bin.middle, centre) + longest * bin.half_angle + (1 + longest) * half_diagonal >=
                 -kMargin) {
-          constexpr int kSamples = 17;
-          const double step = 2 * bin.half_angle / (kSamples - 1);
+          const double within = std::sqrt(1 + 2 * kMargin) + bin.step / 2;
           for (int i = 0; i < kSamples && !reached; ++i) {
-            const double angle = bin.first_angle + i * step;
-            const Vec2 u = {std::cos(angle), std::sin(angle)};
+            const Vec2 u = bin.samples[i];
             const double dx = std::max({x0 - u.x, 0.0, u.x - x1});
             const double dy = std::max({y0 - u.y, 0.0, u.y - y1});
-            reached = std::hypot(dx, dy) - step / 2 <= std::sqrt(1 + 2 * kMargin);
+            reached = dx * dx + dy * dy <= within * within;
           }
         }
         out.covered |= uint64_t{covered} << k;
