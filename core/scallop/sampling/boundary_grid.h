@@ -1,5 +1,5 @@
-// BoundaryGrid: A3's neighbour grid on a rectangle. PointGrid's cells (same
-// origin, width and count), but laid out for A3's one query, the 7 x 7 cells
+// BoundaryGrid: A3's neighbour grid on a rectangle. Cells as PointGrid's
+// (a point alone in each), but laid out for A3's one query, the 7 x 7 cells
 // around a candidate: a bit per cell says which hold a point, so the query
 // reads only those (at most 2 in 5); positions only, 16 bytes a cell instead
 // of 24, in tiles of 8 x 8 cells, so that it touches at most 4 tiles (at 1M
@@ -58,13 +58,15 @@ struct HugePageAllocator {
 
 class BoundaryGrid {
  public:
-  // Covers `area` grown by `margin` on every side, with the cells
-  // PointGrid(area, false, min_distance, margin) has. REQUIRES: min_distance > 0.
+  // Covers `area` grown by `margin` on every side. REQUIRES: min_distance > 0.
   BoundaryGrid(const Rect& area, double min_distance, double margin)
       : origin_{area.x0 - margin, area.y0 - margin} {
-    // PointGrid's expressions, so that every point falls in the same cell.
     const double width = area.Width() + 2 * margin, height = area.Height() + 2 * margin;
-    cell_size_ = min_distance / std::sqrt(2.0) * (1.0 - 1e-9);
+    // A diagonal a millionth short of min_distance, so that no two stored
+    // points share a cell even though cells are found by a product, which
+    // can be a few ulps off (see TruncatedColumnOf).
+    cell_size_ = min_distance / std::sqrt(2.0) * (1.0 - 1e-6);
+    cells_per_unit_ = 1.0 / cell_size_;
     columns_ = static_cast<int64_t>(std::floor(width / cell_size_)) + 1;
     rows_ = static_cast<int64_t>(std::floor(height / cell_size_)) + 1;
     tile_columns_ = (columns_ + kTile - 1) / kTile;
@@ -82,7 +84,7 @@ class BoundaryGrid {
   // the covered area and no point closer than min_distance already stored
   // (so every stored point is alone in its cell, and it is the only point there).
   void Insert(int32_t /*index*/, Vec2 p) {
-    // Inside the covered area the quotients are not negative, so truncation
+    // Inside the covered area the products are not negative, so truncation
     // is floor (which, without SSE4.1, is a libm call per coordinate).
     const int64_t column = TruncatedColumnOf(p.x), row = TruncatedRowOf(p.y);
     positions_[CellIndex(column, row)] = p;
@@ -90,9 +92,10 @@ class BoundaryGrid {
         static_cast<uint8_t>(1u << (column % 8));
   }
 
-  // What PointGrid::GatherNear gives on a rectangle: the positions of the
-  // stored points other than point `self` with SquaredLength(q - p) <
-  // limit_squared, among the cells within `radius` of p, in row-major order.
+  // The positions PointGrid::GatherNear gives on a rectangle, in row-major
+  // order of this grid's cells: those of the stored points other than point
+  // `self` with SquaredLength(q - p) < limit_squared, among the cells within
+  // `radius` of p.
   // REQUIRES: self < 0 (no point excluded), or p is the position of stored
   // point self. O((radius / cell)^2); when the query spans at most 8 x 8
   // cells (A3's 7 x 7), it reads only the occupied ones, whose bits it
@@ -188,12 +191,19 @@ class BoundaryGrid {
     return word >> (c % 8);  // little-endian: byte k holds columns 8 k to 8 k + 7
   }
 
-  // PointGrid's column and row where the quotient is not negative; towards zero otherwise.
+  // The column and row where the quotient is not negative; towards zero
+  // otherwise. By a product with 1 / cell size, not a quotient: there are
+  // eight a point, and a division's latency stood at the head of every
+  // query. A point within a few ulps of a cell's bound may so be filed one
+  // cell over, which is harmless: rounding is monotone, so a query's cells
+  // still hold every point within its radius, and a cell still holds one
+  // point at most (it would take an error of 3.5e-7 d, where the product's
+  // is below 4e-16 times the column, and a grid has far fewer than 10^9).
   int64_t TruncatedColumnOf(double x) const {
-    return static_cast<int64_t>((x - origin_.x) / cell_size_);
+    return static_cast<int64_t>((x - origin_.x) * cells_per_unit_);
   }
   int64_t TruncatedRowOf(double y) const {
-    return static_cast<int64_t>((y - origin_.y) / cell_size_);
+    return static_cast<int64_t>((y - origin_.y) * cells_per_unit_);
   }
   // REQUIRES: column, row >= 0 (unsigned, so / and % are shifts and masks:
   // this runs for every neighbour of every candidate).
@@ -205,7 +215,7 @@ class BoundaryGrid {
   }
 
   Vec2 origin_;
-  double cell_size_;
+  double cell_size_, cells_per_unit_;
   int64_t columns_, rows_, tile_columns_;
   // Tiled cells; a cell's position is set (and read) only where occupancy_ says so.
   std::unique_ptr<Vec2[], PositionsDeleter> positions_;
