@@ -129,10 +129,9 @@ class BoundaryGrid {
     }
     size_t kept = 0;
     // Bit 8 k + j: the cell of row r0 + k, column c0 + j, occupied. Ascending
-    // bits are row-major order.
-    // Always 8 rows, those past r1 masked off (the occupancy has spare rows
-    // of zeros): a loop of a fixed count, where 6 or 7 rows was a branch a
-    // query that its predictor missed.
+    // bits are row-major order. Always 8 rows, those past r1 masked off (the
+    // occupancy has spare rows of zeros): a fixed count, where a count of 6
+    // or 7 cost a mispredicted branch now and then.
     const uint64_t row_mask = (uint64_t{2} << (c1 - c0)) - 1;
     uint64_t occupied = 0;
     for (int64_t k = 0; k < kTile; ++k) {
@@ -200,8 +199,9 @@ class BoundaryGrid {
     return word >> (c % 8);  // little-endian: byte k holds columns 8 k to 8 k + 7
   }
 
-  // The column and row where the quotient is not negative; towards zero
-  // otherwise. By a product with 1 / cell size, not a quotient: there are
+  // The column and row of a coordinate, where its offset from the origin is
+  // not negative; towards zero otherwise. By a product with 1 / cell size,
+  // not a quotient: there are
   // eight a point, and a division's latency stood at the head of every
   // query. A point within a few ulps of a cell's bound may so be filed one
   // cell over, which is harmless: rounding is monotone, so a query's cells

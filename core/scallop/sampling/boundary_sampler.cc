@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <type_traits>
 
 #include "scallop/sampling/available_boundary.h"
@@ -154,7 +155,7 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
       bool valid = (domain.torus || domain.rect.Contains(x)) && !InCoveredRect(problem, x);
       if constexpr (std::is_same_v<Grid, BoundaryGrid>) {
         valid = valid && FarFromAll(x, nearby.data(), nearby_count, d_squared);
-      } else {
+      } else {  // a torus: each neighbour's image nearest x
         for (size_t k = 0; valid && k < nearby_count; ++k) {
           valid = SquaredDistance(grid.NearestImage(x, nearby[k]), x) >= d_squared;
         }
