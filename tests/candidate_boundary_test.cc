@@ -103,7 +103,6 @@ KeyArc ComputedArc(Vec2 offset, double spacing) {
 
 TEST(ArcBinsTest, NeighbourBinsHoldForTheArcsA3Computes) {
   Rng rng(12);
-  int all_bins_wrong = 0;
   long covered_bins = 0;
   // How far from the bins of the computed arc itself the table is, on average.
   long lost_covered = 0, extra_reached = 0, looked_up = 0;
@@ -116,7 +115,6 @@ TEST(ArcBinsTest, NeighbourBinsHoldForTheArcsA3Computes) {
       const KeyArc arc = ComputedArc(offset, spacing);
       const ArcBins bins = table.Of(offset);
       const int errors = BinErrors(arc, bins);
-      all_bins_wrong += errors;
       EXPECT_EQ(errors, 0) << "offset " << unit_offset.x << ", " << unit_offset.y << " spacing "
                            << spacing;
       if (errors != 0) return;
@@ -127,7 +125,6 @@ TEST(ArcBinsTest, NeighbourBinsHoldForTheArcsA3Computes) {
       ++looked_up;
     }
   }
-  EXPECT_EQ(all_bins_wrong, 0);
   EXPECT_GT(covered_bins, 0);
   // Not so cautious as to be useless: measured 0.99 and 1.38 bins an arc.
   EXPECT_LT(static_cast<double>(lost_covered) / static_cast<double>(looked_up), 1.5);
@@ -178,8 +175,9 @@ TEST(AvailableBoundaryBinsTest, ResetToBinsGivesARangeToEachRun) {
   EXPECT_EQ(boundary.ranges()[0].end, kFullTurnKey);
 }
 
-// A candidate at `centre` with neighbours within 2 s, some clustered so that
-// they cover its whole circle, and now and then an arc outside the domain.
+// A candidate at `centre` (now and then far from the origin, where offsets
+// carry rounding) with neighbours within 2 s, some clustered so that they
+// cover its whole circle, and now and then an arc outside the domain.
 struct Scene {
   Vec2 centre;
   std::vector<Vec2> neighbours;
@@ -189,6 +187,8 @@ struct Scene {
 Scene RandomScene(Rng& rng, double spacing) {
   Scene scene;
   scene.centre = {rng.Uniform(-1e3, 1e3), rng.Uniform(-1e3, 1e3)};
+  if (rng.Uniform() < 0.2)
+    scene.centre = {scene.centre.x + 3e6 * spacing, scene.centre.y - 1e6 * spacing};
   const int count = static_cast<int>(rng.Below(14));
   for (int n = 0; n < count; ++n) {
     const Vec2 o = AwkwardOffset(rng);
