@@ -113,6 +113,9 @@ TEST(SamplerOptionsValidation, NamesTheBadField) {
       {with([](auto& o) { o.domain.rect.y1 = 0; }), StatusCode::kInvalidArgument, "y0 must be less"},
       {with([](auto& o) { o.domain.rect.x0 = -1e12; }), StatusCode::kOutOfRange, "domain.x0"},
       {with([](auto& o) { o.domain.rect = {0, 0, 1e5, 1e5}; }), StatusCode::kInvalidArgument, "domain"},
+      // Small in area, but too long and thin for its grids to fit in memory.
+      {with([](auto& o) { o.domain.rect = {0, 0, 4e9, 1e-5}; }), StatusCode::kInvalidArgument,
+       "domain: too large for min_distance once grown"},
       {with([](auto& o) { o.domain.torus = true; o.domain.rect = {0, 0, 7, 100}; }),
        StatusCode::kInvalidArgument, "torus"},
       {with([](auto& o) { o.algorithm = Algorithm::kA1; o.density = 1.0; }),

@@ -20,8 +20,8 @@ CellDarts::CellDarts(const Rect& domain, double min_distance, double spacing, do
       covered_squared_(spacing * spacing * (1.0 - kCoverageMargin)),
       outer_radius_(outer_radius),
       outer_squared_(outer_radius * outer_radius),
-      // BoundaryGrid's cells (and PointGrid's): a point covers its own cell, whose diagonal is
-      // just under d.
+      // PointGrid's cells (BoundaryGrid's are a millionth smaller): a point
+      // covers its own cell, whose diagonal is just under d.
       cell_size_(min_distance / std::sqrt(2.0) * (1.0 - 1e-9)),
       columns_(static_cast<int64_t>(std::floor(domain.Width() / cell_size_)) + 1),
       rows_(static_cast<int64_t>(std::floor(domain.Height() / cell_size_)) + 1),

@@ -80,6 +80,19 @@ Status ValidateSamplerOptions(const SamplerOptions& options) {
                            " points; the limit is " +
                            std::to_string(static_cast<int64_t>(kMaxSamplerPoints)) + ")");
   }
+  // The samplers' grids cover the domain grown by up to 3 d a side, a cell
+  // per d^2 / 2: a long thin domain passes the test above yet would need a
+  // grid beyond any memory (bad_alloc, a crash), so its grown area is
+  // bounded too.
+  const double grown_points =
+      (r.Width() + 8 * d) * (r.Height() + 8 * d) / (d * d) * kDensestPointsPerUnitArea;
+  if (grown_points > kMaxSamplerPoints) {
+    return InvalidArgument(
+        "domain: too large for min_distance once grown by 4 * min_distance a "
+        "side, as the samplers' grids are (up to " +
+        std::to_string(static_cast<int64_t>(grown_points)) + " points; the limit is " +
+        std::to_string(static_cast<int64_t>(kMaxSamplerPoints)) + ")");
+  }
   if (UsesDensity(options.algorithm) &&
       (!std::isfinite(options.density) || options.density <= 1.0 || options.density > 2.0)) {
     return InvalidArgument("density: r'/2r must be in (1, 2], got " +
