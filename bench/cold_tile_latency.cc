@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   for (int n = 0; n < tiles; ++n) {
     // A fresh engine and world per tile: every region starts cold.
     scallop::PlaneEngine engine(scallop::PlaneEngineOptions{.threads = 1});
-    const scallop::World world{.seed = 500 + static_cast<uint64_t>(n)};
+    const scallop::World world = *scallop::World::Create({.seed = 500 + static_cast<uint64_t>(n)});
     const double x = rng.Uniform(-1e4, 1e4), y = rng.Uniform(-1e4, 1e4);
     const double start = ThreadSeconds();
     auto result = engine.Points(world, {x, y, x + side, y + side});

@@ -143,7 +143,7 @@ void BM_WalkFollowVsNaive(benchmark::State& state) {
     double naive_bytes = 0, prefetch_bytes = 0;
     std::map<Mode, double> p99;
     for (const auto& [name, mode] : modes) {
-      WalkResult walk = Walk(server.address(), mode, World{.seed = ++seed}, 0);
+      WalkResult walk = Walk(server.address(), mode, *World::Create({.seed = ++seed}), 0);
       const std::string prefix = name;
       state.counters[prefix + "_bytes_per_s"] = static_cast<double>(walk.bytes) / walk.seconds;
       state.counters[prefix + "_msgs_per_s"] = static_cast<double>(walk.messages) / walk.seconds;

@@ -119,7 +119,7 @@ void BM_NearestWarm(benchmark::State& state) {
   const std::vector<Vec2> positions = state.range(0) ? ImagePositions() : RandomPositions(1);
   PlaneEngine engine({.threads = 2});
   NearestLookup lookup(engine);
-  const World world{.seed = 7};
+  const World world = *World::Create({.seed = 7});
   std::vector<NearestPoint> out(positions.size());
   // Warm every region and grid of the area first: the figure is for warm lookups.
   if (!lookup.Nearest(world, positions, out).ok()) state.SkipWithError("lookup failed");
@@ -141,7 +141,7 @@ BENCHMARK(BM_NearestWarm)->ArgName("image_order")->Arg(0)->Arg(1);
 void BM_NoiseGridWarm(benchmark::State& state) {
   PlaneEngine engine({.threads = 2});
   NearestLookup lookup(engine);
-  const World world{.seed = 7};
+  const World world = *World::Create({.seed = 7});
   const NoiseGridSpec spec{.origin = {0, 0},
                            .step = kAreaSide / 256,
                            .width = 256,

@@ -75,7 +75,8 @@ bool IsLoopbackListen(const std::string& listen) {
 int main(int argc, char** argv) {
   std::string listen = "127.0.0.1:0";
   scallop::load::NullResponseOptions options;
-  options.world.seed = 1;  // scallopd's built-in default world: seed 1, d 1, A3
+  options.world =
+      *scallop::World::Create({.seed = 1});  // scallopd's built-in default world: seed 1, d 1, A3
   CLI::App app{"null_server: GetPoints answered with pre-serialized responses"};
   app.add_option("--listen", listen, "HOST:PORT, loopback only (port 0: any free port)")
       ->capture_default_str();

@@ -15,10 +15,7 @@ namespace {
 constexpr double kSide = 1000.0;  // in d: about 850k A3 points
 
 World BenchWorld(uint64_t seed) {
-  World world;
-  world.seed = seed;
-  world.algorithm = Algorithm::kA3;
-  return world;
+  return *World::Create({.seed = seed, .algorithm = WorldAlgorithm::kA3});
 }
 
 void SetPointsPerSecond(benchmark::State& state, int64_t points) {

@@ -15,6 +15,8 @@
 #include "scallop/analysis/point_statistics.h"
 #include "scallop/analysis/radial_spectrum.h"
 #include "scallop/plane/plane_engine.h"
+#include "scallop/plane/query_rect.h"
+#include "scallop/plane/world_verifier.h"
 #include "scallop/sampling/sampler.h"
 #include "scallop/verify/delaunay_verifier.h"
 #include "world_options.h"
@@ -25,6 +27,8 @@ namespace {
 // Bounds that keep a typo from running for days; the docs' figures use 100.
 constexpr int kMaxSets = 100000;
 constexpr int kMaxThreads = 256;
+// What one set of a world series may read: its window and the verifier's halo.
+constexpr QueryLimit kWorldAnalysisLimit{.max_area = 1e8, .name = "scallop analyze's limit"};
 // Default frequency range: 2.5 cycles per d shows the low-energy annulus, the
 // peak near 1 / d and the flat tail beyond it.
 constexpr double kDefaultCyclesPerD = 2.5;
@@ -176,33 +180,27 @@ StatusOr<std::vector<SeriesPlan>> PlanWorlds(const AnalyzeArguments& arguments) 
       StatusOr<Rect> window = ParseRect(text, "--rect");
       if (!window.ok()) return window.status();
       if (Status status = RequireSquare(*window, "--rect"); !status.ok()) return status;
-      // The verifier needs every point within 2 d of the window.
-      const double halo = 2 * world->min_distance;
-      const Rect query{window->x0 - halo, window->y0 - halo, window->x1 + halo, window->y1 + halo};
-      if (Status status = engine->ValidateQuery(*world, query); !status.ok()) {
-        return InvalidArgument("--rect (grown by 2 d): " + status.message());
+      // What the first set reads (the window and the verifier's halo) is
+      // checked now, so a bad --rect fails before any work.
+      if (Status status = CheckQueryRect(*world, Grown(*window, 2 * world->min_distance()),
+                                         kWorldAnalysisLimit, "--rect+halo");
+          !status.ok()) {
+        return status;
       }
       SeriesPlan plan;
       plan.source = "world";
       plan.name = algorithm + (arguments.rects.size() > 1 ? " " + text : "");
       plan.window = *window;
       plan.sets = arguments.sets;
-      plan.make = [engine, world = *world, query,
-                   window = *window](int set) mutable -> StatusOr<AnalysedSet> {
-        World this_world = world;
-        this_world.seed = world.seed + static_cast<uint64_t>(set);  // wraps modulo 2^64
-        StatusOr<PlanePoints> points = engine->Points(this_world, query);
-        if (!points.ok()) return points.status();
-        AnalysedSet result;
-        for (const Vec2& p : points->positions) {
-          if (window.Contains(p)) result.inside.push_back(p);
-        }
-        if (result.inside.empty()) return InvalidArgument("--rect: too small to hold a point");
+      plan.make = [engine, world = *world, window = *window](int set) -> StatusOr<AnalysedSet> {
+        // Set s is the world of seed + s (modulo 2^64), alike in all else.
+        PlanePoints inside;
         StatusOr<VerifyReport> report =
-            VerifyWindow(points->positions, window, this_world.min_distance);
+            VerifyWorldRect(*engine, world.WithSeed(world.seed() + static_cast<uint64_t>(set)),
+                            window, kWorldAnalysisLimit, &inside);
         if (!report.ok()) return report.status();
-        result.report = *report;
-        return result;
+        if (inside.positions.empty()) return InvalidArgument("--rect: too small to hold a point");
+        return AnalysedSet{std::move(inside.positions), 0, *report};
       };
       plans.push_back(std::move(plan));
     }

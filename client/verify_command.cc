@@ -20,7 +20,7 @@ namespace {
 // The verifier holds about 250 bytes per point (delaunay_verifier.h), so the
 // engine's 1e8 d^2 (85M points, 21 GB) is too much: 1e7 d^2 is 8.5M points,
 // about 2.3 GB and 35 s (1e6 d^2 takes 3.5 s and 230 MB on two cores).
-constexpr double kMaxVerifyArea = 1e7;
+constexpr QueryLimit kVerifyLimit{.max_area = 1e7, .name = "scallop verify's limit"};
 
 struct VerifyArguments {
   WorldArguments world;
@@ -35,14 +35,14 @@ nlohmann::json Measured(double value) {
 
 void WriteJsonReport(std::ostream& out, const WorldQuery& query, const VerifyReport& report) {
   const World& world = query.world;
-  const double d = world.min_distance;
+  const double d = world.min_distance();
   const nlohmann::json document{
       {"world",
-       {{"seed", world.seed},
+       {{"seed", world.seed()},
         {"min_distance", d},
-        {"algorithm", AlgorithmName(world.algorithm)},
-        {"density", CanonicalWorld(world).density},
-        {"generator_version", world.generator_version}}},
+        {"algorithm", WorldAlgorithmName(world.algorithm())},
+        {"density", world.density()},
+        {"generator_version", world.generator_version()}}},
       {"rect", {query.rect.x0, query.rect.y0, query.rect.x1, query.rect.y1}},
       {"points_checked", report.points_checked},
       {"pairs_checked", report.pairs_checked},
@@ -72,10 +72,10 @@ std::string WithRatio(double value, double d) {
 }
 
 void WriteTextReport(std::ostream& out, const WorldQuery& query, const VerifyReport& report) {
-  const double d = query.world.min_distance;
+  const double d = query.world.min_distance();
   const Rect& r = query.rect;
   out << std::setprecision(12);
-  out << "world                      " << DescribeWorld(query.world) << '\n'
+  out << "world                      " << query.world.Describe() << '\n'
       << "rect                       " << r.x0 << ',' << r.y0 << ',' << r.x1 << ',' << r.y1 << '\n'
       << "points checked             " << report.points_checked << '\n'
       << "pairs checked              " << report.pairs_checked << '\n'
@@ -143,11 +143,11 @@ int RunVerify(const VerifyArguments& arguments) {
     std::cerr << "scallop verify: " << query.status().message() << '\n';
     return 2;
   }
-  query->engine.max_query_area = kMaxVerifyArea;
+  query->engine.max_query_area = kVerifyLimit.max_area;
   PlaneEngine engine(query->engine);
-  // VerifyWorldRect runs PlaneEngine::ValidateQuery first, then checks the
-  // rectangle grown by its halo: both are the caller's fault, so exit 2.
-  StatusOr<VerifyReport> report = VerifyWorldRect(engine, query->world, query->rect);
+  // VerifyWorldRect checks the rectangle and the one grown by its halo
+  // first: failures there are the caller's, so exit 2.
+  StatusOr<VerifyReport> report = VerifyWorldRect(engine, query->world, query->rect, kVerifyLimit);
   if (!report.ok()) {
     std::cerr << "scallop verify: " << report.status().message() << '\n';
     return 2;

@@ -50,18 +50,12 @@ StatusOr<World> ParseWorld(const WorldArguments& arguments) {
   if (seed.empty() || error != std::errc() || end != seed.data() + seed.size()) {
     return InvalidArgument("--seed: must be an integer in 0..2^64-1, got '" + seed + "'");
   }
-  // ParseAlgorithm also knows the bounded-only baselines; offer only what a world accepts.
-  StatusOr<Algorithm> algorithm = ParseAlgorithm(arguments.algorithm);
-  if (!algorithm.ok()) {
-    return InvalidArgument("world.algorithm: must be a1, a2 or a3, got '" + arguments.algorithm +
-                           "'");
-  }
-  const World world{.seed = seed_value,
-                    .min_distance = arguments.min_distance,
-                    .algorithm = *algorithm,
-                    .density = arguments.density};
-  if (Status status = ValidateWorld(world); !status.ok()) return status;
-  return world;
+  StatusOr<WorldAlgorithm> algorithm = ParseWorldAlgorithm(arguments.algorithm);
+  if (!algorithm.ok()) return algorithm.status();
+  return World::Create({.seed = seed_value,
+                        .min_distance = arguments.min_distance,
+                        .algorithm = *algorithm,
+                        .density = arguments.density});
 }
 
 }  // namespace scallop::cli

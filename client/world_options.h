@@ -36,9 +36,9 @@ struct WorldQuery {
 };
 
 // Parses --seed, --algorithm and --rect and checks --threads and the world
-// (ValidateWorld). The rectangle's range and area are left to
-// PlaneEngine::ValidateQuery, which every query runs first, because the area
-// limit is the engine's. Errors name the option or the world field.
+// (World::Create). The rectangle's range and area are left to the rectangle
+// rule (CheckQueryRect), which every query runs first with the command's
+// limit. Errors name the option or the world field.
 StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments);
 
 // The world alone (--seed, --min-distance, --algorithm, --density), checked.

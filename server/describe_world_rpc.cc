@@ -12,14 +12,14 @@ grpc::ServerUnaryReactor* ScallopService::DescribeWorld(grpc::CallbackServerCont
     ResolvedWorld resolved;
     if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
     const World& world = resolved.world;
-    log.set_world(scallop::DescribeWorld(world));
-    const RegionLayout layout(world.min_distance);
+    log.set_world(world.Describe());
+    const RegionLayout layout(world.min_distance());
     *response->mutable_world() = WorldToMessage(world);
     response->set_name(resolved.name);
-    response->set_description(scallop::DescribeWorld(world));
+    response->set_description(world.Describe());
     response->set_region_side(layout.side());
     response->set_precision_limit(layout.precision_limit());
-    response->set_fingerprint(WorldFingerprint(world));
+    response->set_fingerprint(world.fingerprint());
     return grpc::Status::OK;
   });
 }

@@ -159,7 +159,7 @@ class FollowReactor final
         return status;
       }
       world_ = resolved.world;
-      log_.set_world(scallop::DescribeWorld(world_));
+      log_.set_world(world_.Describe());
       tracker_.emplace(world_);
       prefetch_.emplace(service_.engine_, service_.request_pool_, world_);
     } else if (request_.world_choice_case() != v1::FollowRequest::WORLD_CHOICE_NOT_SET) {

@@ -3,7 +3,6 @@
 // rectangle's regions are all cached, on the request pool otherwise.
 #include <algorithm>
 
-#include "query_limits.h"
 #include "scallop_service.h"
 #include "status_mapping.h"
 #include "world_messages.h"
@@ -67,7 +66,7 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
   size_t total = 0;
   {
     PointsAppender appender(points, std::min(upper_bound, page_size));
-    total = VisitPoints(regions, RegionLayout(world.min_distance), rect, offset, end,
+    total = VisitPoints(regions, RegionLayout(world.min_distance()), rect, offset, end,
                         [&](const Vec2& position, uint64_t id) { appender.Append(position, id); });
   }
   if (offset > total) {

@@ -14,7 +14,6 @@
 #include <boost/asio/thread_pool.hpp>
 #include <chrono>
 #include <iostream>
-#include <limits>
 #include <thread>
 
 #include "malloc_tuning.h"
@@ -120,17 +119,19 @@ int main(int argc, char** argv) {
   scallop::server::TuneMallocForResponses();
   // Logs on stderr; stdout carries only the address line, for scripts and tests.
   spdlog::set_default_logger(spdlog::stderr_logger_mt("scallopd"));
-  spdlog::set_level(spdlog::level::from_str(config.log_level));  // validated: never "off" by mistake
+  spdlog::set_level(
+      spdlog::level::from_str(config.log_level));  // validated: never "off" by mistake
 
   const scallop::server::WorldRegistry worlds(config.worlds, config.default_world);
   const scallop::server::PageTokenCodec page_tokens(
       config.page_token_secret.empty() ? "scallop-page-token/" + worlds.Fingerprint()
                                        : config.page_token_secret);
-  // The engine's own area check is switched off: each method checks its own
-  // limit (query_limits.h) before calling it, and Verify adds a halo on top.
+  // Each method checks its own limit (query_rect.h) on what it reads before
+  // calling the engine, so the engine's own check, the largest of them, never
+  // refuses what a method let through.
   scallop::PlaneEngine engine({.cache_bytes = config.cache_megabytes << 20,
                                .threads = config.threads,
-                               .max_query_area = std::numeric_limits<double>::infinity()});
+                               .max_query_area = scallop::server::LargestAreaLimit(config)});
   boost::asio::thread_pool request_pool(static_cast<size_t>(config.threads));
   scallop::server::RequestMetrics metrics;
   scallop::server::ScallopService service(config, worlds, page_tokens, engine, request_pool,
@@ -170,7 +171,7 @@ int main(int argc, char** argv) {
               << std::endl;
   }
   spdlog::info("listening on {}:{}; default world {} ({}); {} threads", host, port,
-               config.default_world, scallop::DescribeWorld(config.worlds.at(config.default_world)),
+               config.default_world, config.worlds.at(config.default_world).Describe(),
                config.threads);
 
   boost::asio::io_context signals_context;

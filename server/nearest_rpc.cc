@@ -16,7 +16,7 @@ grpc::ServerUnaryReactor* ScallopService::Nearest(grpc::CallbackServerContext* c
     ResolvedWorld resolved;
     if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
     const World& world = resolved.world;
-    log.set_world(scallop::DescribeWorld(world));
+    log.set_world(world.Describe());
     const v1::Positions& message = request->positions();
     if (message.xs_size() != message.ys_size()) {
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,

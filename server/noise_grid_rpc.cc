@@ -36,7 +36,7 @@ grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext*
     ResolvedWorld resolved;
     if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
     const World& world = resolved.world;
-    log.set_world(scallop::DescribeWorld(world));
+    log.set_world(world.Describe());
     const std::optional<NoiseChannel> channel = ChannelFromMessage(request->channel());
     if (!channel) {
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,

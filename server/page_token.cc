@@ -27,7 +27,7 @@ uint64_t ReadWord(const std::string& in, size_t at) {
 }
 
 uint64_t QueryDigest(const World& world, const Rect& rect) {
-  return HashWords({WorldFingerprint(world), std::bit_cast<uint64_t>(rect.x0),
+  return HashWords({world.fingerprint(), std::bit_cast<uint64_t>(rect.x0),
                     std::bit_cast<uint64_t>(rect.y0), std::bit_cast<uint64_t>(rect.x1),
                     std::bit_cast<uint64_t>(rect.y1)});
 }

@@ -11,12 +11,13 @@
 
 #include "in_flight_limit.h"
 #include "page_token.h"
-#include "query_limits.h"
 #include "request_log.h"
 #include "scallop/noise/nearest_lookup.h"
 #include "scallop/plane/plane_engine.h"
+#include "scallop/plane/query_rect.h"
 #include "scallop/v1/scallop.grpc.pb.h"
 #include "server_config.h"
+#include "status_mapping.h"
 #include "world_messages.h"
 #include "world_registry.h"
 
@@ -90,10 +91,14 @@ class ScallopService final : public v1::Scallop::CallbackService {
     ResolvedWorld resolved;
     if (grpc::Status status = worlds_.Resolve(request, resolved); !status.ok()) return status;
     world = resolved.world;
-    log.set_world(scallop::DescribeWorld(world));
+    log.set_world(world.Describe());
     rect = RectFromMessage(request.rect());
     log.set_rect(rect);
-    return CheckQueryRect(engine_, world, request.has_rect(), rect, max_area, limit_name);
+    if (!request.has_rect()) {
+      return {grpc::StatusCode::INVALID_ARGUMENT,
+              "rect: required, the half-open rectangle [x0, x1) x [y0, y1)"};
+    }
+    return ToGrpcStatus(CheckQueryRect(world, rect, {.max_area = max_area, .name = limit_name}));
   }
 
   const ServerConfig& config_;

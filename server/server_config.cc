@@ -3,6 +3,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <charconv>
 #include <set>
 #include <sstream>
@@ -13,17 +14,12 @@ namespace {
 
 StatusOr<World> WorldFromFields(const std::string& where, uint64_t seed, double min_distance,
                                 const std::string& algorithm_name, double density) {
-  StatusOr<Algorithm> algorithm = ParseAlgorithm(algorithm_name);
-  if (!algorithm.ok()) {
-    return InvalidArgument(where + ".algorithm: must be a1, a2 or a3, got '" + algorithm_name +
-                           "'");
-  }
-  const World world{
-      .seed = seed, .min_distance = min_distance, .algorithm = *algorithm, .density = density};
-  if (Status status = ValidateWorld(world); !status.ok()) {
-    return InvalidArgument(where + ": " + status.message());
-  }
-  return CanonicalWorld(world);
+  StatusOr<WorldAlgorithm> algorithm = ParseWorldAlgorithm(algorithm_name, where + ".algorithm");
+  if (!algorithm.ok()) return algorithm.status();
+  StatusOr<World> world = World::Create(
+      {.seed = seed, .min_distance = min_distance, .algorithm = *algorithm, .density = density});
+  if (!world.ok()) return InvalidArgument(where + ": " + world.status().message());
+  return world;
 }
 
 }  // namespace
@@ -119,6 +115,11 @@ Status AddWorldSpec(const std::string& spec, ServerConfig& config) {
     return InvalidArgument(usage + " (min_distance and density must be numbers)");
   }
   return Status::Ok();
+}
+
+double LargestAreaLimit(const ServerConfig& config) {
+  return std::max({config.max_query_area, config.max_stream_area, config.max_verify_area,
+                   config.max_follow_area});
 }
 
 Status ValidateConfig(const ServerConfig& config) {

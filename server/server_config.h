@@ -34,8 +34,12 @@ struct ServerConfig {
   std::string page_token_secret;
   std::string default_world = "default";
   // Named worlds, sorted by name. "default" (seed 1, d 1, A3) is built in.
-  std::map<std::string, World> worlds{{"default", World{.seed = 1}}};
+  std::map<std::string, World> worlds{{"default", *World::Create({.seed = 1})}};
 };
+
+// The largest area any method hands the engine: its own area limit, which
+// each method applies to what it reads (Verify's halo, Follow's margin).
+double LargestAreaLimit(const ServerConfig& config);
 
 // Overrides `config` with the keys of a YAML file (the field names above, plus
 // `worlds: {name: {seed, min_distance, algorithm, density}}`). INVALID_ARGUMENT

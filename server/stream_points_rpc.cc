@@ -5,7 +5,7 @@
 #include <boost/asio/post.hpp>
 
 #include "admitted_stream.h"
-#include "query_limits.h"
+#include "scallop/plane/query_rect.h"
 #include "scallop/plane/region_layout.h"
 #include "scallop_service.h"
 #include "status_mapping.h"
@@ -45,10 +45,8 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
         !status.ok()) {
       return status;
     }
-    const RegionLayout layout(world_.min_distance);
-    low_ = layout.RegionOf(rect_.x0, rect_.y0);
-    high_ = layout.RegionOf(std::nextafter(rect_.x1, rect_.x0), std::nextafter(rect_.y1, rect_.y0));
-    next_ = low_;
+    range_ = RegionsOverlapping(RegionLayout(world_.min_distance()), rect_);
+    next_ = range_.low;
     return grpc::Status::OK;
   }
 
@@ -60,18 +58,19 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
   // stream's concatenation equals the unary answer. Skips regions with no
   // point inside the rectangle.
   void WriteNextChunk() {
-    const RegionLayout layout(world_.min_distance);
+    const RegionLayout layout(world_.min_distance());
     while (true) {
       if (context_->IsCancelled()) {
         FinishWith({grpc::StatusCode::CANCELLED, "stream: cancelled or past its deadline"});
         return;
       }
-      if (next_.j > high_.j) {
+      if (next_.j > range_.high.j) {
         FinishWith(grpc::Status::OK);
         return;
       }
       const RegionKey key = next_;
-      next_ = key.i < high_.i ? RegionKey{key.i + 1, key.j} : RegionKey{low_.i, key.j + 1};
+      next_ =
+          key.i < range_.high.i ? RegionKey{key.i + 1, key.j} : RegionKey{range_.low.i, key.j + 1};
       const Rect owned = layout.RegionRect(key);
       const Rect part{std::max(rect_.x0, owned.x0), std::max(rect_.y0, owned.y0),
                       std::min(rect_.x1, owned.x1), std::min(rect_.y1, owned.y1)};
@@ -95,7 +94,8 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
   grpc::CallbackServerContext* context_;
   World world_;
   Rect rect_;
-  RegionKey low_, high_, next_;
+  RegionRange range_;
+  RegionKey next_;
   v1::PointsChunk chunk_;  // the chunk being written; reused, alive until OnWriteDone
 };
 

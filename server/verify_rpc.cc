@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "query_limits.h"
 #include "scallop/plane/world_verifier.h"
 #include "scallop_service.h"
 #include "status_mapping.h"
@@ -17,14 +16,15 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
   return RunUnary(context, "Verify", [this, request, response](RequestLog& log) {
     World world;
     Rect rect;
-    if (grpc::Status status = ResolveQuery(*request, config_.max_verify_area, "max_verify_area",
-                                           log, world, rect);
+    if (grpc::Status status =
+            ResolveQuery(*request, config_.max_verify_area, "max_verify_area", log, world, rect);
         !status.ok()) {
       return status;
     }
-    StatusOr<VerifyReport> report = VerifyWorldRect(engine_, world, rect);
+    StatusOr<VerifyReport> report = VerifyWorldRect(
+        engine_, world, rect, {.max_area = config_.max_verify_area, .name = "max_verify_area"});
     if (!report.ok()) return ToGrpcStatus(report.status());
-    const double d = world.min_distance, halo = 2 * d;
+    const double d = world.min_distance(), halo = 2 * d;
     const double max_abs =
         std::max({std::abs(rect.x0), std::abs(rect.x1), std::abs(rect.y0), std::abs(rect.y1)}) +
         halo;

@@ -34,7 +34,7 @@ std::vector<std::string> WorldRegistry::names() const {
 
 std::string WorldRegistry::Fingerprint() const {
   std::string text = "default=" + default_name_;
-  for (const auto& [name, world] : worlds_) text += ";" + name + "=" + DescribeWorld(world);
+  for (const auto& [name, world] : worlds_) text += ";" + name + "=" + world.Describe();
   return text;
 }
 

@@ -10,6 +10,7 @@
 #include "nearest_oracle.h"
 #include "scallop/noise/cell_value.h"
 #include "scallop/noise/noise_grid.h"
+#include "tests/test_worlds.h"
 
 namespace scallop::testing {
 namespace {
@@ -21,7 +22,7 @@ constexpr NoiseChannel kChannels[] = {NoiseChannel::kF1, NoiseChannel::kF2,
 TEST(NoiseGridTest, EveryChannelIsTheLookupAtTheSamplePositions) {
   PlaneEngine engine({.threads = 1});
   NearestLookup lookup(engine);
-  const World world{.seed = 12, .min_distance = 0.8};
+  const World world = ValidWorld({.seed = 12, .min_distance = 0.8});
   // An odd step and an origin off the seams, so samples land everywhere;
   // 67,900 samples, so that the image takes two batches of whole rows.
   const NoiseGridSpec base{
@@ -77,7 +78,7 @@ TEST(NoiseGridTest, EveryChannelIsTheLookupAtTheSamplePositions) {
 TEST(NoiseGridTest, RejectsBadGridsNamingTheField) {
   PlaneEngine engine({.threads = 1});
   NearestLookup lookup(engine);
-  const World world{.seed = 1};
+  const World world = ValidWorld({.seed = 1});
   const NoiseGridSpec good{.origin = {0, 0}, .step = 1, .width = 4, .height = 3, .channel = {}};
   EXPECT_TRUE(ValidateNoiseGrid(world, good, 12).ok());
   auto expect = [&](NoiseGridSpec spec, int64_t max_samples, StatusCode code, const char* field) {

@@ -19,7 +19,7 @@
 namespace scallop::testing {
 
 inline NearestPoint OracleNearest(PlaneEngine& engine, const World& world, Vec2 p) {
-  const double d = world.min_distance, half = 6 * d;
+  const double d = world.min_distance(), half = 6 * d;
   const double limit = RegionLayout(d).precision_limit();
   const Rect square{std::max(p.x - half, -limit), std::max(p.y - half, -limit),
                     std::min(p.x + half, limit), std::min(p.y + half, limit)};

@@ -18,11 +18,15 @@
 #include "scallop/plane/world_verifier.h"
 #include "scallop/random/rng.h"
 #include "scallop/verify/delaunay_verifier.h"
+#include "tests/test_worlds.h"
 
 namespace scallop {
 namespace {
 
-constexpr Algorithm kPlaneAlgorithms[] = {Algorithm::kA1, Algorithm::kA2, Algorithm::kA3};
+constexpr WorldAlgorithm kPlaneAlgorithms[] = {WorldAlgorithm::kA1, WorldAlgorithm::kA2,
+                                               WorldAlgorithm::kA3};
+// What the tests let a rectangle of the verifier read (the engine's default).
+constexpr QueryLimit kVerifyLimit{};
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
@@ -45,15 +49,15 @@ std::string Describe(const VerifyReport& r, double d) {
   return out.str();
 }
 
-World RandomWorld(Rng& rng, Algorithm algorithm) {
-  World world;
-  world.seed = rng.NextBits();
-  world.algorithm = algorithm;
+World RandomWorld(Rng& rng, WorldAlgorithm algorithm) {
+  WorldSpec spec;
+  spec.seed = rng.NextBits();
+  spec.algorithm = algorithm;
   // Non-integer d put region edges 16 k d on rounded doubles.
   const double ds[] = {1.0, 0.37, 3.1, 0.1 * std::exp2(rng.Uniform(0.0, 7.0))};
-  world.min_distance = ds[rng.Below(std::size(ds))];
-  world.density = UsesDensity(algorithm) ? rng.Uniform(1.02, 2.0) : 2.0;
-  return world;
+  spec.min_distance = ds[rng.Below(std::size(ds))];
+  spec.density = UsesDensity(algorithm) ? rng.Uniform(1.02, 2.0) : 2.0;
+  return ValidWorld(spec);
 }
 
 // w x h between 1 d and 100 d (log-uniform on each side), placed anywhere
@@ -118,7 +122,7 @@ struct ContractTally {
 TEST(PlaneContractTest, RandomRectanglesAcrossSeamsPassTheVerifier) {
   constexpr int kRectanglesPerAlgorithm = 80;
   ContractTally total;
-  for (Algorithm algorithm : kPlaneAlgorithms) {
+  for (WorldAlgorithm algorithm : kPlaneAlgorithms) {
     const uint64_t seed = HashWords({0xc047, static_cast<uint64_t>(algorithm)});
     Rng rng(seed);
     // One engine for all worlds and rectangles: what it served before must
@@ -127,18 +131,18 @@ TEST(PlaneContractTest, RandomRectanglesAcrossSeamsPassTheVerifier) {
     ContractTally tally;
     for (int n = 0; n < kRectanglesPerAlgorithm; ++n) {
       const World world = RandomWorld(rng, algorithm);
-      const Rect rect = RandomRect(rng, world.min_distance);
-      StatusOr<VerifyReport> report = VerifyWorldRect(engine, world, rect);
+      const Rect rect = RandomRect(rng, world.min_distance());
+      StatusOr<VerifyReport> report = VerifyWorldRect(engine, world, rect, kVerifyLimit);
       ASSERT_TRUE(report.ok()) << report.status().message();
-      tally.Add(*report, world.min_distance);
+      tally.Add(*report, world.min_distance());
       if (!report->passed() && tally.failures <= 5) {
-        ADD_FAILURE() << "test seed " << seed << " rectangle " << n << ": " << DescribeWorld(world)
+        ADD_FAILURE() << "test seed " << seed << " rectangle " << n << ": " << world.Describe()
                       << ", rect " << Describe(rect) << ": "
-                      << Describe(*report, world.min_distance);
+                      << Describe(*report, world.min_distance());
       }
     }
-    tally.Print(std::string(AlgorithmName(algorithm)).c_str());
-    EXPECT_EQ(tally.failures, 0) << AlgorithmName(algorithm) << ", test seed " << seed;
+    tally.Print(std::string(WorldAlgorithmName(algorithm)).c_str());
+    EXPECT_EQ(tally.failures, 0) << WorldAlgorithmName(algorithm) << ", test seed " << seed;
     // Every rectangle holds at least one point, and many pairs cross seams,
     // or the seam figures above would be empty words.
     EXPECT_GT(tally.pairs_across_seams, 1000);
@@ -178,14 +182,11 @@ TEST(PlaneContractTest, RandomRectanglesAcrossSeamsPassTheVerifier) {
 // near the origin, at negative coordinates, and right up to the limit.
 TEST(PlaneContractTest, PrecisionRangeHoldsToTheLimit) {
   ContractTally tally;
-  for (Algorithm algorithm : kPlaneAlgorithms) {
+  for (WorldAlgorithm algorithm : kPlaneAlgorithms) {
     for (double d : {1.0, 0.37}) {
-      World world;
-      world.seed = 2718;
-      world.min_distance = d;
-      world.algorithm = algorithm;
-      world.density = 1.6;
-      SCOPED_TRACE(DescribeWorld(world));
+      const World world =
+          ValidWorld({.seed = 2718, .min_distance = d, .algorithm = algorithm, .density = 1.6});
+      SCOPED_TRACE(world.Describe());
       PlaneEngine engine(PlaneEngineOptions{});
       const double limit = RegionLayout(d).precision_limit();
       ASSERT_EQ(limit, std::exp2(32) * d);
@@ -199,7 +200,7 @@ TEST(PlaneContractTest, PrecisionRangeHoldsToTheLimit) {
           {-limit + 3 * d, limit - 30 * d, -limit + 30 * d, limit - 3 * d},
       };
       for (const Rect& rect : judged) {
-        StatusOr<VerifyReport> report = VerifyWorldRect(engine, world, rect);
+        StatusOr<VerifyReport> report = VerifyWorldRect(engine, world, rect, kVerifyLimit);
         ASSERT_TRUE(report.ok()) << report.status().message() << " for " << Describe(rect);
         tally.Add(*report, d);
         EXPECT_TRUE(report->passed()) << Describe(rect) << ": " << Describe(*report, d);
@@ -238,10 +239,10 @@ TEST(PlaneContractTest, PrecisionRangeHoldsToTheLimit) {
       }
       // Inside the limit, but its halo is not: the verifier says so.
       StatusOr<VerifyReport> halo_beyond =
-          VerifyWorldRect(engine, world, {limit - 20 * d, 0, limit - d, 10 * d});
+          VerifyWorldRect(engine, world, {limit - 20 * d, 0, limit - d, 10 * d}, kVerifyLimit);
       ASSERT_FALSE(halo_beyond.ok());
       EXPECT_EQ(halo_beyond.status().code(), StatusCode::kOutOfRange);
-      EXPECT_NE(halo_beyond.status().message().find("rect.x1"), std::string::npos)
+      EXPECT_NE(halo_beyond.status().message().find("rect+halo.x1"), std::string::npos)
           << halo_beyond.status().message();
       // Regions: the last inside on each side, and the first beyond.
       constexpr int64_t kLastIndex = (int64_t{1} << 28) - 1;
@@ -358,14 +359,11 @@ void MoveToward(std::vector<Vec2>& points, size_t p, size_t q, double fraction, 
 // (a hole, maximality), a point moved to 0.99 d of its neighbour inside a
 // region and across a seam (spacing). The unmodified set is the control.
 TEST(PlaneContractTest, VerifierCatchesFaultsPlantedInRealOutput) {
-  for (Algorithm algorithm : kPlaneAlgorithms) {
+  for (WorldAlgorithm algorithm : kPlaneAlgorithms) {
     for (double d : {1.0, 0.37}) {
-      World world;
-      world.seed = 99;
-      world.min_distance = d;
-      world.algorithm = algorithm;
-      world.density = 1.8;
-      SCOPED_TRACE(DescribeWorld(world));
+      const World world =
+          ValidWorld({.seed = 99, .min_distance = d, .algorithm = algorithm, .density = 1.8});
+      SCOPED_TRACE(world.Describe());
       PlaneEngine engine(PlaneEngineOptions{});
       const RegionLayout layout(d);
       // A window of 24 d around the corner shared by regions (0,0), (-1,0),
@@ -420,7 +418,7 @@ TEST(PlaneContractTest, VerifierCatchesFaultsPlantedInRealOutput) {
       std::printf(
           "%s d=%g: %d drops left a hole (smallest largest empty circle / d %.6f), %d drops "
           "stayed maximal within tolerance\n",
-          std::string(AlgorithmName(algorithm)).c_str(), d, real_holes, smallest_hole,
+          std::string(WorldAlgorithmName(algorithm)).c_str(), d, real_holes, smallest_hole,
           holes_within_tolerance);
 
       // Too close, inside one region: a point and its nearest neighbour, both
@@ -461,94 +459,108 @@ TEST(PlaneContractTest, VerifierCatchesFaultsPlantedInRealOutput) {
   }
 }
 
-// A status code and the name of the field it blames, for each bad input.
-struct BadInput {
+// A status code and the name of the field it blames, for each bad rectangle.
+struct BadRect {
   const char* name;
-  World world;
   Rect rect;
   StatusCode code;
   const char* field;
 };
 
-World WorldWith(Algorithm algorithm, double d, double density, uint32_t version) {
-  World world;
-  world.seed = 5;
-  world.algorithm = algorithm;
-  world.min_distance = d;
-  world.density = density;
-  world.generator_version = version;
-  return world;
+WorldSpec SpecWith(WorldAlgorithm algorithm, double d, double density, uint32_t version) {
+  return {.seed = 5,
+          .min_distance = d,
+          .algorithm = algorithm,
+          .density = density,
+          .generator_version = version};
 }
 
-// Every kind of bad input, through every entry point that takes it: the
+void ExpectStatus(const Status& status, StatusCode code, const char* field,
+                  const std::string& what) {
+  EXPECT_EQ(status.code(), code) << what << ": " << status.message();
+  EXPECT_NE(status.message().find(field), std::string::npos)
+      << what << ": message \"" << status.message() << "\" lacks \"" << field << "\"";
+}
+
+// Every kind of bad rectangle, through every entry point that takes one: the
 // right StatusCode, the field named in the message, nothing generated, and
 // the engine still serving good queries afterwards.
-TEST(PlaneContractTest, BadInputGetsAStatusNamingTheField) {
-  const World good = WorldWith(Algorithm::kA3, 1.0, 2.0, kGeneratorVersion);
-  const Rect ok_rect{0, 0, 10, 10};
+TEST(PlaneContractTest, BadRectangleGetsAStatusNamingTheField) {
+  const World good = ValidWorld(SpecWith(WorldAlgorithm::kA3, 1.0, 2.0, kGeneratorVersion));
   const StatusCode invalid = StatusCode::kInvalidArgument, out_of_range = StatusCode::kOutOfRange;
   const double limit = std::exp2(32);
-  const std::vector<BadInput> cases = {
-      {"x0 NaN", good, {kNaN, 0, 10, 10}, invalid, "rect.x0"},
-      {"y0 -inf", good, {0, -kInfinity, 10, 10}, invalid, "rect.y0"},
-      {"x1 +inf", good, {0, 0, kInfinity, 10}, invalid, "rect.x1"},
-      {"y1 NaN", good, {0, 0, 10, kNaN}, invalid, "rect.y1"},
-      {"x inverted", good, {10, 0, 0, 10}, invalid, "rect: x0"},
-      {"y inverted", good, {0, 10, 10, 0}, invalid, "rect: y0"},
-      {"empty in x", good, {3, 0, 3, 10}, invalid, "rect: x0"},
-      {"empty in y", good, {0, -2, 10, -2}, invalid, "rect: y0"},
-      {"area", good, {0, 0, 2e4, 2e4}, invalid, "area"},
-      {"x0 beyond", good, {-2 * limit, 0, 10, 10}, out_of_range, "rect.x0"},
-      {"y1 beyond", good, {0, 0, 10, limit + 1}, out_of_range, "rect.y1"},
-      {"d zero", WorldWith(Algorithm::kA3, 0.0, 2, kGeneratorVersion), ok_rect, invalid, "world.min_distance"},
-      {"d negative", WorldWith(Algorithm::kA1, -1.0, 1.5, kGeneratorVersion), ok_rect, invalid,
-       "world.min_distance"},
-      {"d NaN", WorldWith(Algorithm::kA3, kNaN, 2, kGeneratorVersion), ok_rect, invalid, "world.min_distance"},
-      {"d inf", WorldWith(Algorithm::kA3, kInfinity, 2, kGeneratorVersion), ok_rect, invalid, "world.min_distance"},
-      {"d tiny", WorldWith(Algorithm::kA3, 1e-300, 2, kGeneratorVersion), ok_rect, invalid, "world.min_distance"},
-      {"a1 density 1", WorldWith(Algorithm::kA1, 1.0, 1.0, kGeneratorVersion), ok_rect, invalid, "world.density"},
-      {"a1 density 2.01", WorldWith(Algorithm::kA1, 1.0, 2.01, kGeneratorVersion), ok_rect, invalid,
-       "world.density"},
-      {"a2 density NaN", WorldWith(Algorithm::kA2, 1.0, kNaN, kGeneratorVersion), ok_rect, invalid,
-       "world.density"},
-      {"a2 density 0.5", WorldWith(Algorithm::kA2, 1.0, 0.5, kGeneratorVersion), ok_rect, invalid, "world.density"},
-      {"dart", WorldWith(Algorithm::kDartThrowing, 1.0, 2, kGeneratorVersion), ok_rect, invalid, "world.algorithm"},
-      {"bridson", WorldWith(Algorithm::kBridson, 1.0, 2, kGeneratorVersion), ok_rect, invalid, "world.algorithm"},
-      {"best candidate", WorldWith(Algorithm::kBestCandidate, 1.0, 2, kGeneratorVersion), ok_rect, invalid,
-       "world.algorithm"},
-      {"algorithm out of enum", WorldWith(static_cast<Algorithm>(77), 1.0, 2, kGeneratorVersion), ok_rect, invalid,
-       "world.algorithm"},
-      {"version 0", WorldWith(Algorithm::kA3, 1.0, 2, 0), ok_rect, invalid,
-       "world.generator_version"},
-      {"version retired", WorldWith(Algorithm::kA3, 1.0, 2, kGeneratorVersion - 1), ok_rect,
-       invalid, "world.generator_version"},
-      {"version next", WorldWith(Algorithm::kA1, 1.0, 1.5, kGeneratorVersion + 1), ok_rect, invalid,
-       "world.generator_version"},
+  const std::vector<BadRect> cases = {
+      {"x0 NaN", {kNaN, 0, 10, 10}, invalid, "rect.x0"},
+      {"y0 -inf", {0, -kInfinity, 10, 10}, invalid, "rect.y0"},
+      {"x1 +inf", {0, 0, kInfinity, 10}, invalid, "rect.x1"},
+      {"y1 NaN", {0, 0, 10, kNaN}, invalid, "rect.y1"},
+      {"x inverted", {10, 0, 0, 10}, invalid, "rect: x0"},
+      {"y inverted", {0, 10, 10, 0}, invalid, "rect: y0"},
+      {"empty in x", {3, 0, 3, 10}, invalid, "rect: x0"},
+      {"empty in y", {0, -2, 10, -2}, invalid, "rect: y0"},
+      {"area", {0, 0, 2e4, 2e4}, invalid, "area"},
+      {"x0 beyond", {-2 * limit, 0, 10, 10}, out_of_range, "rect.x0"},
+      {"y1 beyond", {0, 0, 10, limit + 1}, out_of_range, "rect.y1"},
   };
   PlaneEngine engine(PlaneEngineOptions{});
-  auto expect_status = [](const Status& status, const BadInput& c, const char* entry) {
-    EXPECT_EQ(status.code(), c.code) << c.name << " via " << entry << ": " << status.message();
-    EXPECT_NE(status.message().find(c.field), std::string::npos)
-        << c.name << " via " << entry << ": message \"" << status.message() << "\" lacks \""
-        << c.field << "\"";
-  };
-  for (const BadInput& c : cases) {
-    expect_status(engine.ValidateQuery(c.world, c.rect), c, "ValidateQuery");
-    expect_status(engine.Points(c.world, c.rect).status(), c, "Points");
-    expect_status(engine.Count(c.world, c.rect).status(), c, "Count");
-    expect_status(VerifyWorldRect(engine, c.world, c.rect).status(), c, "VerifyWorldRect");
-    if (c.world != good) expect_status(engine.Region(c.world, {0, 0}).status(), c, "Region");
-    if (c.world != good) expect_status(ValidateWorld(c.world), c, "ValidateWorld");
+  for (const BadRect& c : cases) {
+    const std::string name = c.name;
+    ExpectStatus(engine.ValidateQuery(good, c.rect), c.code, c.field, name + " via ValidateQuery");
+    ExpectStatus(engine.Points(good, c.rect).status(), c.code, c.field, name + " via Points");
+    ExpectStatus(engine.Count(good, c.rect).status(), c.code, c.field, name + " via Count");
+    ExpectStatus(VerifyWorldRect(engine, good, c.rect, kVerifyLimit).status(), c.code, c.field,
+                 name + " via VerifyWorldRect");
   }
   EXPECT_EQ(engine.CacheStats().misses, 0) << "a rejected query generated regions";
-
-  // Fields that do not matter are not errors: A3 ignores density.
-  EXPECT_TRUE(engine.Points(WorldWith(Algorithm::kA3, 1.0, 7.0, kGeneratorVersion), ok_rect).ok());
   // The engine still serves.
-  EXPECT_TRUE(engine.Points(good, ok_rect).ok());
+  EXPECT_TRUE(engine.Points(good, {0, 0, 10, 10}).ok());
 }
 
-// ValidateWorld accepts d in [2^-900, 2^900], but the generator squares
+// Every kind of bad world parameter: World::Create refuses it with the field
+// named, so no entry point of the core can be handed one.
+TEST(PlaneContractTest, BadWorldGetsAStatusNamingTheField) {
+  const struct {
+    const char* name;
+    WorldSpec spec;
+    const char* field;
+  } cases[] = {
+      {"d zero", SpecWith(WorldAlgorithm::kA3, 0.0, 2, kGeneratorVersion), "world.min_distance"},
+      {"d negative", SpecWith(WorldAlgorithm::kA1, -1.0, 1.5, kGeneratorVersion),
+       "world.min_distance"},
+      {"d NaN", SpecWith(WorldAlgorithm::kA3, kNaN, 2, kGeneratorVersion), "world.min_distance"},
+      {"d inf", SpecWith(WorldAlgorithm::kA3, kInfinity, 2, kGeneratorVersion),
+       "world.min_distance"},
+      {"d tiny", SpecWith(WorldAlgorithm::kA3, 1e-300, 2, kGeneratorVersion), "world.min_distance"},
+      {"a1 density 1", SpecWith(WorldAlgorithm::kA1, 1.0, 1.0, kGeneratorVersion), "world.density"},
+      {"a1 density 2.01", SpecWith(WorldAlgorithm::kA1, 1.0, 2.01, kGeneratorVersion),
+       "world.density"},
+      {"a2 density NaN", SpecWith(WorldAlgorithm::kA2, 1.0, kNaN, kGeneratorVersion),
+       "world.density"},
+      {"a2 density 0.5", SpecWith(WorldAlgorithm::kA2, 1.0, 0.5, kGeneratorVersion),
+       "world.density"},
+      {"algorithm past a3", SpecWith(static_cast<WorldAlgorithm>(3), 1.0, 2, kGeneratorVersion),
+       "world.algorithm"},
+      {"algorithm out of enum",
+       SpecWith(static_cast<WorldAlgorithm>(77), 1.0, 2, kGeneratorVersion), "world.algorithm"},
+      {"version 0", SpecWith(WorldAlgorithm::kA3, 1.0, 2, 0), "world.generator_version"},
+      {"version retired", SpecWith(WorldAlgorithm::kA3, 1.0, 2, kGeneratorVersion - 1),
+       "world.generator_version"},
+      {"version next", SpecWith(WorldAlgorithm::kA1, 1.0, 1.5, kGeneratorVersion + 1),
+       "world.generator_version"},
+  };
+  for (const auto& c : cases) {
+    ExpectStatus(World::Create(c.spec).status(), StatusCode::kInvalidArgument, c.field, c.name);
+  }
+  // Fields that do not matter are not errors, and are normalised away: A3
+  // ignores density.
+  StatusOr<World> a3 = World::Create(SpecWith(WorldAlgorithm::kA3, 1.0, 7.0, kGeneratorVersion));
+  ASSERT_TRUE(a3.ok());
+  EXPECT_EQ(*a3, ValidWorld(SpecWith(WorldAlgorithm::kA3, 1.0, 2.0, kGeneratorVersion)));
+  EXPECT_EQ(a3->fingerprint(),
+            ValidWorld(SpecWith(WorldAlgorithm::kA3, 1.0, 2.0, kGeneratorVersion)).fingerprint());
+}
+
+// World::Create once accepted d in [2^-900, 2^900], but the generator squares
 // distances: below about 2^-537 d^2 underflows to 0 and above about 2^511 it
 // overflows, and then it hangs or returns garbage. Found with a 10 d x 10 d
 // query at the origin, seed 5, density 1.5 (Points, Release build):
@@ -567,7 +579,8 @@ TEST(PlaneContractTest, MinDistanceWhereSquaresUnderOrOverflowIsRejected) {
   std::string accepted;
   for (double d :
        {0x1.0p-900, 0x1.0p-600, 0x1.0p-540, 0x1.0p511, 0x1.0p513, 0x1.0p520, 0x1.0p900}) {
-    const Status status = ValidateWorld(WorldWith(Algorithm::kA3, d, 2.0, kGeneratorVersion));
+    const Status status =
+        World::Create(SpecWith(WorldAlgorithm::kA3, d, 2.0, kGeneratorVersion)).status();
     if (status.code() != StatusCode::kInvalidArgument ||
         status.message().find("world.min_distance") == std::string::npos) {
       accepted += " 2^" + std::to_string(static_cast<int>(std::log2(d)));
@@ -584,12 +597,11 @@ TEST(PlaneContractTest, ExtremeMinDistancesInsideTheWorkingRangeHoldTheContract)
   ContractTally tally;
   PlaneEngine engine(PlaneEngineOptions{});
   for (double d : {0x1.0p-256, 0x1.0p256}) {
-    for (Algorithm algorithm : kPlaneAlgorithms) {
-      const World world = WorldWith(algorithm, d, 1.5, kGeneratorVersion);
-      SCOPED_TRACE(DescribeWorld(world));
-      ASSERT_TRUE(ValidateWorld(world).ok());
+    for (WorldAlgorithm algorithm : kPlaneAlgorithms) {
+      const World world = ValidWorld(SpecWith(algorithm, d, 1.5, kGeneratorVersion));
+      SCOPED_TRACE(world.Describe());
       const Rect rect{-10 * d, -10 * d, 10 * d, 10 * d};
-      StatusOr<VerifyReport> report = VerifyWorldRect(engine, world, rect);
+      StatusOr<VerifyReport> report = VerifyWorldRect(engine, world, rect, kVerifyLimit);
       ASSERT_TRUE(report.ok()) << report.status().message();
       tally.Add(*report, d);
       EXPECT_TRUE(report->passed()) << Describe(*report, d);

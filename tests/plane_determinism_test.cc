@@ -19,11 +19,13 @@
 #include "scallop/plane/point_id.h"
 #include "scallop/plane/region_layout.h"
 #include "scallop/random/rng.h"
+#include "tests/test_worlds.h"
 
 namespace scallop {
 namespace {
 
-constexpr Algorithm kPlaneAlgorithms[] = {Algorithm::kA1, Algorithm::kA2, Algorithm::kA3};
+constexpr WorldAlgorithm kPlaneAlgorithms[] = {WorldAlgorithm::kA1, WorldAlgorithm::kA2,
+                                               WorldAlgorithm::kA3};
 
 // One point as the tests compare it: the id and the coordinates' bit patterns,
 // so -0.0 against 0.0 or a last-bit difference counts as a difference.
@@ -86,15 +88,11 @@ PlanePoints MustPoints(PlaneEngine& engine, const World& world, const Rect& rect
 // Worlds for one algorithm: d = 1, and non-integer d (0.37, 3.1) whose region
 // edges 16 k d are rounded doubles, so seams fall between representable
 // values in the way a real deployment's would.
-std::vector<World> TestWorlds(Algorithm algorithm, uint64_t dice_seed) {
+std::vector<World> TestWorlds(WorldAlgorithm algorithm, uint64_t dice_seed) {
   Rng dice(dice_seed);
   std::vector<World> worlds;
   for (double d : {1.0, 0.37, 3.1}) {
-    World world;
-    world.seed = dice.NextBits();
-    world.min_distance = d;
-    world.algorithm = algorithm;
-    world.density = UsesDensity(algorithm) ? dice.Uniform(1.05, 2.0) : 2.0;
+    const World world = DiceWorld(dice, algorithm, d);
     worlds.push_back(world);
   }
   return worlds;
@@ -195,7 +193,7 @@ PlaneEngineOptions EngineOptions(int threads, int64_t cache_bytes) {
 // regions it still depends on, so they are regenerated from scratch.
 constexpr int64_t kTinyCacheBytes = 24 << 10;
 
-class PlaneDeterminismTest : public ::testing::TestWithParam<Algorithm> {};
+class PlaneDeterminismTest : public ::testing::TestWithParam<WorldAlgorithm> {};
 
 TEST_P(PlaneDeterminismTest, TilingOrderCacheAndThreadsGiveTheSameBits) {
   const uint64_t seed = HashWords({0x7e57, static_cast<uint64_t>(GetParam())});
@@ -206,10 +204,10 @@ TEST_P(PlaneDeterminismTest, TilingOrderCacheAndThreadsGiveTheSameBits) {
   int trials = 0, seam_cuts = 0;
   for (const World& world : TestWorlds(GetParam(), rng.NextBits())) {
     for (int trial = 0; trial < 3; ++trial, ++trials) {
-      const Rect rect = RandomRect(rng, world.min_distance, 6.0, 56.0);
+      const Rect rect = RandomRect(rng, world.min_distance(), 6.0, 56.0);
       const uint64_t tiling_seed = rng.NextBits();
       SCOPED_TRACE(::testing::Message()
-                   << "test seed " << seed << ", " << DescribeWorld(world) << ", rect "
+                   << "test seed " << seed << ", " << world.Describe() << ", rect "
                    << Describe(rect) << ", tiling seed " << tiling_seed);
       PlaneEngine cold(EngineOptions(2, int64_t{256} << 20));
       const PlanePoints reference = MustPoints(cold, world, rect);
@@ -225,14 +223,15 @@ TEST_P(PlaneDeterminismTest, TilingOrderCacheAndThreadsGiveTheSameBits) {
 
       // The same engine, now warm, tiled in a random order, then whole again.
       Rng tiling_rng(tiling_seed);
-      const std::vector<Rect> tiles = RandomTiling(tiling_rng, rect, world.min_distance, seam_cuts);
+      const std::vector<Rect> tiles =
+          RandomTiling(tiling_rng, rect, world.min_distance(), seam_cuts);
       EXPECT_TRUE(SameBits(expected, UnionOfTiles(cold, world, tiles))) << "warm, tiled";
       EXPECT_TRUE(SameBits(expected_order, InQueryOrder(MustPoints(cold, world, rect))))
           << "warm, whole";
 
       // Another tiling, in another order, on an engine that keeps evicting.
       const std::vector<Rect> other_tiles =
-          RandomTiling(tiling_rng, rect, world.min_distance, seam_cuts);
+          RandomTiling(tiling_rng, rect, world.min_distance(), seam_cuts);
       EXPECT_TRUE(SameBits(expected, UnionOfTiles(tiny, world, other_tiles))) << "tiny cache";
       EXPECT_TRUE(SameBits(expected_order, InQueryOrder(MustPoints(tiny, world, rect))))
           << "tiny cache, whole";
@@ -260,11 +259,11 @@ TEST_P(PlaneDeterminismTest, RegionEqualsThePointsOfItsRectangle) {
   Rng rng(seed);
   PlaneEngine engine(EngineOptions(2, int64_t{256} << 20));
   for (const World& world : TestWorlds(GetParam(), rng.NextBits())) {
-    const RegionLayout layout(world.min_distance);
+    const RegionLayout layout(world.min_distance());
     for (int trial = 0; trial < 4; ++trial) {
       const RegionKey key{static_cast<int64_t>(rng.Below(400)) - 200,
                           static_cast<int64_t>(rng.Below(400)) - 200};
-      SCOPED_TRACE(::testing::Message() << "test seed " << seed << ", " << DescribeWorld(world)
+      SCOPED_TRACE(::testing::Message() << "test seed " << seed << ", " << world.Describe()
                                         << ", region " << key.i << "," << key.j);
       // Region first on half the trials, the rectangle first on the others,
       // so each path sees both a cold and a warm cache.
@@ -304,7 +303,7 @@ TEST_P(PlaneDeterminismTest, ConcurrentCallersGetSequentialResults) {
   for (const World& world : TestWorlds(GetParam(), rng.NextBits())) {
     for (int n = 0; n < 3; ++n) {
       // Small offsets, so queries overlap and share regions.
-      const double d = world.min_distance;
+      const double d = world.min_distance();
       const double x0 = d * rng.Uniform(-40, 40), y0 = d * rng.Uniform(-40, 40);
       queries.push_back(
           {world, {x0, y0, x0 + d * rng.Uniform(4, 40), y0 + d * rng.Uniform(4, 40)}});
@@ -343,7 +342,7 @@ TEST_P(PlaneDeterminismTest, ConcurrentCallersGetSequentialResults) {
       EXPECT_EQ(failures[c], 0);
       for (size_t q = 0; q < queries.size(); ++q) {
         EXPECT_TRUE(SameBits(expected[q], got[c][q]))
-            << "caller " << c << ", " << DescribeWorld(queries[q].world) << ", rect "
+            << "caller " << c << ", " << queries[q].world.Describe() << ", rect "
             << Describe(queries[q].rect);
       }
     }
@@ -358,10 +357,10 @@ TEST_P(PlaneDeterminismTest, IdsDecodeToTheOwningRegion) {
   Rng rng(seed);
   PlaneEngine engine(EngineOptions(2, int64_t{256} << 20));
   for (const World& world : TestWorlds(GetParam(), rng.NextBits())) {
-    const RegionLayout layout(world.min_distance);
+    const RegionLayout layout(world.min_distance());
     for (int trial = 0; trial < 3; ++trial) {
-      const Rect rect = RandomRect(rng, world.min_distance, 10.0, 50.0);
-      SCOPED_TRACE(::testing::Message() << "test seed " << seed << ", " << DescribeWorld(world)
+      const Rect rect = RandomRect(rng, world.min_distance(), 10.0, 50.0);
+      SCOPED_TRACE(::testing::Message() << "test seed " << seed << ", " << world.Describe()
                                         << ", rect " << Describe(rect));
       const PlanePoints points = MustPoints(engine, world, rect);
       const RegionKey reference = layout.RegionOf(rect.x0, rect.y0);
@@ -388,16 +387,15 @@ TEST_P(PlaneDeterminismTest, IdsDecodeToTheOwningRegion) {
 
 INSTANTIATE_TEST_SUITE_P(PlaneAlgorithms, PlaneDeterminismTest,
                          ::testing::ValuesIn(kPlaneAlgorithms),
-                         [](const ::testing::TestParamInfo<Algorithm>& info) {
-                           return std::string(AlgorithmName(info.param));
+                         [](const ::testing::TestParamInfo<WorldAlgorithm>& info) {
+                           return std::string(WorldAlgorithmName(info.param));
                          });
 
 // The comparison the tests above rely on, shown to catch planted faults in
 // real output: one coordinate one ulp off, -0.0 for 0.0, a point missing,
 // a point repeated, two ids swapped.
 TEST(PlaneDeterminismCheckTest, SameBitsCatchesPlantedDifferences) {
-  World world;
-  world.seed = 11;
+  const World world = ValidWorld({.seed = 11});
   PlaneEngine engine(EngineOptions(1, int64_t{64} << 20));
   const PlanePoints real = MustPoints(engine, world, {-20, -20, 20, 20});
   ASSERT_GT(real.positions.size(), 100u);

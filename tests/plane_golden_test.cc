@@ -13,6 +13,7 @@
 #include "scallop/plane/point_id.h"
 #include "scallop/plane/region_layout.h"
 #include "scallop/random/rng.h"
+#include "tests/test_worlds.h"
 
 namespace scallop {
 namespace {
@@ -30,13 +31,11 @@ uint64_t HashSequence(const std::vector<uint64_t>& words) {
 // whose generation reads neighbours of all lower ranks.
 constexpr RegionKey kGoldenRegions[] = {{0, 0}, {1, 0}, {1, 1}, {-3, 5}};
 
-World GoldenWorld(Algorithm algorithm, uint64_t seed = 2026) {
-  World world;
-  world.seed = seed;
-  world.min_distance = 1.0;
-  world.algorithm = algorithm;
-  world.density = UsesDensity(algorithm) ? 1.8 : 2.0;
-  return world;
+World GoldenWorld(WorldAlgorithm algorithm, uint64_t seed = 2026) {
+  return ValidWorld({.seed = seed,
+                     .min_distance = 1.0,
+                     .algorithm = algorithm,
+                     .density = UsesDensity(algorithm) ? 1.8 : 2.0});
 }
 
 // The hash of one region as a query returns it: the point count, then for
@@ -45,7 +44,7 @@ World GoldenWorld(Algorithm algorithm, uint64_t seed = 2026) {
 // equals Region.
 uint64_t RegionHash(PlaneEngine& engine, const World& world, RegionKey key) {
   StatusOr<PlanePoints> points =
-      engine.Points(world, RegionLayout(world.min_distance).RegionRect(key));
+      engine.Points(world, RegionLayout(world.min_distance()).RegionRect(key));
   EXPECT_TRUE(points.ok()) << points.status().message();
   StatusOr<RegionHandle> region = engine.Region(world, key);
   EXPECT_TRUE(region.ok()) << region.status().message();
@@ -62,7 +61,7 @@ uint64_t RegionHash(PlaneEngine& engine, const World& world, RegionKey key) {
 }
 
 struct Golden {
-  Algorithm algorithm;
+  WorldAlgorithm algorithm;
   uint64_t hashes[std::size(kGoldenRegions)];
 };
 
@@ -77,11 +76,11 @@ struct Golden {
 // values hold on every IEEE-754 machine (docs/design.md, "Randomness and
 // determinism").
 constexpr Golden kGolden[] = {
-    {Algorithm::kA1,
+    {WorldAlgorithm::kA1,
      {0x19b760fffb7a8c6cULL, 0x804e59a34dd0f0aaULL, 0x1872d91ea1568b67ULL, 0x7a2bcea118d7ddaaULL}},
-    {Algorithm::kA2,
+    {WorldAlgorithm::kA2,
      {0x4920bd49e89ae34eULL, 0x4bc12a1157fe5a69ULL, 0xded827ac3c8f178aULL, 0xe6743cc0b1905b65ULL}},
-    {Algorithm::kA3,
+    {WorldAlgorithm::kA3,
      {0x9fcb377136c14d7bULL, 0x10cae05cf58cd55bULL, 0x3e1b341810fc3cafULL, 0xa0801fb86048b368ULL}},
 };
 
@@ -91,7 +90,7 @@ TEST(PlaneGoldenTest, RegionsOfAFixedWorldHaveTheirPinnedHashes) {
   EXPECT_EQ(HashSequence({1, 2, 3}), HashWords({1, 2, 3}));
   for (const Golden& golden : kGolden) {
     const World world = GoldenWorld(golden.algorithm);
-    SCOPED_TRACE(DescribeWorld(world));
+    SCOPED_TRACE(world.Describe());
     // One thread and two, cold both times: the hash must not depend on it.
     for (int threads : {1, 2}) {
       PlaneEngineOptions options;
@@ -101,12 +100,12 @@ TEST(PlaneGoldenTest, RegionsOfAFixedWorldHaveTheirPinnedHashes) {
         const RegionKey key = kGoldenRegions[n];
         const uint64_t hash = RegionHash(engine, world, key);
         EXPECT_EQ(hash, golden.hashes[n])
-            << "region (" << key.i << ", " << key.j << ") of " << DescribeWorld(world) << " with "
+            << "region (" << key.i << ", " << key.j << ") of " << world.Describe() << " with "
             << threads << " threads: got 0x" << std::hex << hash
             << "; if this change is intended, bump kGeneratorVersion";
         if (threads == 1) {
           std::printf("%s region (%lld, %lld): 0x%016llxULL\n",
-                      std::string(AlgorithmName(golden.algorithm)).c_str(),
+                      std::string(WorldAlgorithmName(golden.algorithm)).c_str(),
                       static_cast<long long>(key.i), static_cast<long long>(key.j),
                       static_cast<unsigned long long>(hash));
         }
@@ -122,13 +121,13 @@ TEST(PlaneGoldenTest, OtherWorldsGiveOtherHashes) {
   for (const Golden& golden : kGolden) {
     const World world = GoldenWorld(golden.algorithm);
     std::vector<World> others = {GoldenWorld(golden.algorithm, 2027)};
-    World other_d = world;
+    WorldSpec other_d = world.spec();
     other_d.min_distance = 1.25;
-    others.push_back(other_d);
+    others.push_back(ValidWorld(other_d));
     if (UsesDensity(golden.algorithm)) {
-      World other_density = world;
+      WorldSpec other_density = world.spec();
       other_density.density = 1.7;
-      others.push_back(other_density);
+      others.push_back(ValidWorld(other_density));
     }
     std::vector<uint64_t> mine;
     for (RegionKey key : kGoldenRegions) mine.push_back(RegionHash(engine, world, key));
@@ -136,7 +135,7 @@ TEST(PlaneGoldenTest, OtherWorldsGiveOtherHashes) {
       for (size_t b = a + 1; b < mine.size(); ++b) EXPECT_NE(mine[a], mine[b]);
     }
     for (const World& other : others) {
-      SCOPED_TRACE(DescribeWorld(other));
+      SCOPED_TRACE(other.Describe());
       for (size_t n = 0; n < std::size(kGoldenRegions); ++n) {
         EXPECT_NE(RegionHash(engine, other, kGoldenRegions[n]), mine[n]);
       }

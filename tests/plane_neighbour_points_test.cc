@@ -15,6 +15,7 @@
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/region_layout.h"
 #include "scallop/random/rng.h"
+#include "tests/test_worlds.h"
 
 namespace scallop {
 namespace {
@@ -28,11 +29,11 @@ struct OracleResult {
 
 OracleResult OracleGather(const World& world, RegionKey key,
                           const std::vector<const RegionPoints*>& lower_neighbours) {
-  const RegionLayout layout(world.min_distance);
-  const double d = world.min_distance;
+  const RegionLayout layout(world.min_distance());
+  const double d = world.min_distance();
   const Rect rect = layout.RegionRect(key);
   const Rect sampled = Grown(rect, kSamplingMarginInD * d);
-  const double reach = 1.01 * (UsesDensity(world.algorithm) ? world.density * d : d);
+  const double reach = 1.01 * (UsesDensity(world.algorithm()) ? world.density() * d : d);
   const double inert_reach = 2 * reach + 1.01 * d;
   // Every open cell on its own: the region's and each higher-ranked neighbour's part.
   std::vector<Rect> open{rect};
@@ -104,17 +105,14 @@ std::vector<RegionKey> TestKeys(Rng& dice) {
 TEST(PlaneNeighbourPointsTest, GathersWhatTheOracleGathers) {
   Rng dice(HashWords({71}));
   int near_misses = 0, cases = 0;
-  for (const Algorithm algorithm : {Algorithm::kA1, Algorithm::kA2, Algorithm::kA3}) {
+  for (const WorldAlgorithm algorithm :
+       {WorldAlgorithm::kA1, WorldAlgorithm::kA2, WorldAlgorithm::kA3}) {
     for (const double d : {1.0, 0.37, 3.1}) {
-      World world;
-      world.seed = dice.NextBits();
-      world.min_distance = d;
-      world.algorithm = algorithm;
-      world.density = UsesDensity(algorithm) ? dice.Uniform(1.05, 2.0) : 2.0;
+      const World world = DiceWorld(dice, algorithm, d);
       PlaneEngine engine(PlaneEngineOptions{.threads = 1});
       for (const RegionKey key : TestKeys(dice)) {
-        SCOPED_TRACE(::testing::Message() << DescribeWorld(world) << " key " << key.i << ","
-                                          << key.j << " rank " << RegionRank(key));
+        SCOPED_TRACE(::testing::Message() << world.Describe() << " key " << key.i << "," << key.j
+                                          << " rank " << RegionRank(key));
         std::vector<RegionHandle> handles;
         std::vector<const RegionPoints*> neighbours;
         for (const RegionKey n : LowerRankedNeighbours(key)) {

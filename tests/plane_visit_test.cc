@@ -4,6 +4,7 @@
 
 #include "scallop/plane/plane_engine.h"
 #include "scallop/random/rng.h"
+#include "tests/test_worlds.h"
 
 namespace scallop {
 namespace {
@@ -30,8 +31,8 @@ TEST(PlaneVisitTest, PagesEqualSlicesOfTheBruteForceOrder) {
   PlaneEngine engine({.threads = 1});
   Rng rng(77);
   for (int trial = 0; trial < 40; ++trial) {
-    const World world{.seed = rng.NextBits(), .min_distance = rng.Uniform(0.1, 3)};
-    const double d = world.min_distance;
+    const World world = ValidWorld({.seed = rng.NextBits(), .min_distance = rng.Uniform(0.1, 3)});
+    const double d = world.min_distance();
     const double x = rng.Uniform(-500, 500) * d, y = rng.Uniform(-500, 500) * d;
     // From a sliver inside one region to rectangles holding whole regions.
     const Rect rect{x, y, x + rng.Uniform(0.5, 70) * d, y + rng.Uniform(0.5, 70) * d};
@@ -60,7 +61,7 @@ TEST(PlaneVisitTest, PagesEqualSlicesOfTheBruteForceOrder) {
 
 TEST(PlaneVisitTest, CachedRegionsNeverGenerates) {
   PlaneEngine engine({.threads = 1});
-  const World world{.seed = 3};
+  const World world = ValidWorld({.seed = 3});
   const Rect rect{-20, -20, 20, 20};
   EXPECT_FALSE(engine.CachedRegions(world, rect).has_value());
   EXPECT_EQ(engine.CacheStats().misses, 0);

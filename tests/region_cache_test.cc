@@ -1,12 +1,14 @@
 // The region cache computes each region once, even when many threads want it
 // at the same moment, and stays within its byte budget.
+#include "scallop/plane/region_cache.h"
+
 #include <gtest/gtest.h>
 
 #include <thread>
 #include <vector>
 
 #include "scallop/plane/plane_engine.h"
-#include "scallop/plane/region_cache.h"
+#include "tests/test_worlds.h"
 
 namespace scallop {
 namespace {
@@ -32,10 +34,8 @@ TEST(RegionCacheTest, ExactlyOneCallerGeneratesAKey) {
 // closure must be generated exactly once: as many misses as a lone query
 // needs. A cache that let two callers generate one key would count more.
 TEST(RegionCacheTest, ConcurrentQueriesGenerateEachRegionOnce) {
-  for (Algorithm algorithm : {Algorithm::kA3, Algorithm::kA1}) {
-    World world;
-    world.seed = 99;
-    world.algorithm = algorithm;
+  for (WorldAlgorithm algorithm : {WorldAlgorithm::kA3, WorldAlgorithm::kA1}) {
+    const World world = ValidWorld({.seed = 99, .algorithm = algorithm});
     const Rect rect{-70, -50, 90, 60};
 
     PlaneEngineOptions lone_options;
@@ -55,7 +55,7 @@ TEST(RegionCacheTest, ConcurrentQueriesGenerateEachRegionOnce) {
     }
     for (std::thread& caller : callers) caller.join();
     const RegionCacheStats stats = shared.CacheStats();
-    EXPECT_EQ(stats.misses, regions_needed) << AlgorithmName(algorithm);
+    EXPECT_EQ(stats.misses, regions_needed) << WorldAlgorithmName(algorithm);
     EXPECT_EQ(stats.regions, regions_needed);
     for (size_t count : counts) EXPECT_EQ(count, counts[0]);
   }

@@ -14,6 +14,7 @@
 #include "scallop/plane/region_layout.h"
 #include "scallop/random/rng.h"
 #include "scallop/sampling/sampler.h"
+#include "tests/test_worlds.h"
 
 namespace scallop {
 namespace {
@@ -50,12 +51,12 @@ std::vector<Vec2> WindowCentres(WindowClass window_class) {
 // The block [0, 48)^2 of worlds 1000, 1001, ...: one point set per seed.
 using Blocks = std::vector<std::vector<Vec2>>;
 
-Blocks WorldBlocks(Algorithm algorithm, int seeds) {
+Blocks WorldBlocks(WorldAlgorithm algorithm, int seeds) {
   PlaneEngine engine(PlaneEngineOptions{.threads = 1});
   Blocks blocks;
   for (int s = 0; s < seeds; ++s) {
     auto world =
-        engine.Points(World{.seed = 1000 + static_cast<uint64_t>(s), .algorithm = algorithm},
+        engine.Points(ValidWorld({.seed = 1000 + static_cast<uint64_t>(s), .algorithm = algorithm}),
                       {0, 0, 3 * kSide, 3 * kSide});
     EXPECT_TRUE(world.ok()) << world.status().message();
     blocks.push_back(world->positions);
@@ -79,14 +80,14 @@ Blocks WithGapsAlongSeams(const Blocks& blocks) {
 
 // Planted defect: every region sampled alone, as a naive tiling would,
 // ignoring its neighbours.
-Blocks IndependentRegionBlocks(Algorithm algorithm, int seeds) {
+Blocks IndependentRegionBlocks(WorldAlgorithm algorithm, int seeds) {
   Blocks blocks;
   for (int s = 0; s < seeds; ++s) {
     blocks.emplace_back();
     for (int j = 0; j < 3; ++j) {
       for (int i = 0; i < 3; ++i) {
         SamplerOptions options;
-        options.algorithm = algorithm;
+        options.algorithm = SamplerAlgorithm(algorithm);
         options.domain.rect = {i * kSide, j * kSide, (i + 1) * kSide, (j + 1) * kSide};
         options.seed = HashWords({1000 + static_cast<uint64_t>(s), uint64_t(i), uint64_t(j)});
         auto region = Sample(options);
@@ -195,15 +196,15 @@ std::vector<double> SeamDensityProfile(const Blocks& blocks, const std::string& 
 // had 47 % more A1 points within d / 4 of a seam than beyond 3 d); the
 // planted defects are caught.
 TEST(SeamSpectrumTest, A1SeamsAndCornersLookLikeRegionInteriors) {
-  const Blocks blocks = WorldBlocks(Algorithm::kA1, 24);
+  const Blocks blocks = WorldBlocks(WorldAlgorithm::kA1, 24);
   const std::vector<double> density = SeamDensityProfile(blocks, "a1");
   EXPECT_NEAR(density.front(), density.back(), 0.08 * density.back());
   EXPECT_LT(WorstZ(blocks, WindowClass::kSeam, "a1"), kMaxZ);
   EXPECT_LT(WorstZ(blocks, WindowClass::kCorner, "a1"), kMaxZ);
   EXPECT_GT(WorstZ(WithGapsAlongSeams(blocks), WindowClass::kSeam, "a1 with gaps"), kMaxZ);
-  EXPECT_GT(
-      WorstZ(IndependentRegionBlocks(Algorithm::kA1, 24), WindowClass::kCorner, "a1 regions alone"),
-      kMaxZ);
+  EXPECT_GT(WorstZ(IndependentRegionBlocks(WorldAlgorithm::kA1, 24), WindowClass::kCorner,
+                   "a1 regions alone"),
+            kMaxZ);
 }
 
 // A3 worlds, at 48 seeds: the old generator's seam layer (20 % more points
@@ -211,7 +212,7 @@ TEST(SeamSpectrumTest, A1SeamsAndCornersLookLikeRegionInteriors) {
 // / d) is gone. A bin of the profile holds ~2000 points over 48 worlds, so
 // 5 % is ~2 standard errors.
 TEST(SeamSpectrumTest, A3SeamsAndCornersLookLikeRegionInteriors) {
-  const Blocks blocks = WorldBlocks(Algorithm::kA3, 48);
+  const Blocks blocks = WorldBlocks(WorldAlgorithm::kA3, 48);
   const std::vector<double> density = SeamDensityProfile(blocks, "a3");
   EXPECT_NEAR(density.front(), density.back(), 0.05 * density.back());
   EXPECT_LT(WorstZ(blocks, WindowClass::kSeam, "a3"), kMaxZ);
@@ -221,7 +222,7 @@ TEST(SeamSpectrumTest, A3SeamsAndCornersLookLikeRegionInteriors) {
   const std::vector<double> gapped_density = SeamDensityProfile(gapped, "a3 with gaps");
   EXPECT_LT(gapped_density.front(), 0.95 * gapped_density.back());
   EXPECT_GT(WorstZ(gapped, WindowClass::kCorner, "a3 with gaps"), kMaxZ);
-  const Blocks alone = IndependentRegionBlocks(Algorithm::kA3, 48);
+  const Blocks alone = IndependentRegionBlocks(WorldAlgorithm::kA3, 48);
   EXPECT_GT(WorstZ(alone, WindowClass::kSeam, "a3 regions alone"), kMaxZ);
 }
 

@@ -18,6 +18,7 @@
 
 #include "scallop/plane/point_id.h"
 #include "scallop/random/rng.h"
+#include "tests/test_worlds.h"
 
 namespace scallop {
 namespace {
@@ -37,7 +38,7 @@ Rect GrownViewport(const ViewportUpdate& update) {
 // Every region whose rectangle overlaps `rect`, by brute force over a
 // generous index range.
 std::set<RegionKey> RegionsOverlappingByBruteForce(const World& world, const Rect& rect) {
-  const RegionLayout layout(world.min_distance);
+  const RegionLayout layout(world.min_distance());
   std::set<RegionKey> keys;
   const auto lo_i = static_cast<int64_t>(std::floor(rect.x0 / layout.side())) - 1;
   const auto hi_i = static_cast<int64_t>(std::floor(rect.x1 / layout.side())) + 1;
@@ -95,7 +96,7 @@ std::string ApplyAndCheck(const World& world, const ViewportUpdate& update,
       }
     }
   }
-  const RegionLayout layout(world.min_distance);
+  const RegionLayout layout(world.min_distance());
   for (size_t n = 0; n < in_view.ids.size(); ++n) {
     const Vec2 p = in_view.positions[n];
     const RegionKey region = DecodePointId(in_view.ids[n], layout.RegionOf(p.x, p.y)).region;
@@ -120,7 +121,7 @@ struct PathStep {
 };
 
 std::vector<PathStep> RandomPath(Rng& rng, const World& world, int steps, bool held) {
-  const double d = world.min_distance;
+  const double d = world.min_distance();
   const double limit = RegionLayout(d).precision_limit();
   double w = rng.Uniform(4, 40) * d, h = rng.Uniform(4, 40) * d;
   double cx = rng.Uniform(-1e4, 1e4) * d, cy = rng.Uniform(-1e4, 1e4) * d;
@@ -236,8 +237,8 @@ std::string FollowPath(PlaneEngine& engine, const World& world, Rng& rng,
 // The tracker only sees ids and positions, so the algorithm does not matter
 // to it; the scale of d does (region arithmetic). A3 is the cheapest to generate.
 std::vector<World> TestWorlds(uint64_t seed) {
-  return {World{.seed = seed}, World{.seed = seed, .min_distance = 0.37},
-          World{.seed = seed, .min_distance = 1000}};
+  return {ValidWorld({.seed = seed}), ValidWorld({.seed = seed, .min_distance = 0.37}),
+          ValidWorld({.seed = seed, .min_distance = 1000})};
 }
 
 TEST(ViewportTrackerTest, RandomWalksHoldEveryPointInViewOnceAndEvictExactly) {
@@ -245,10 +246,10 @@ TEST(ViewportTrackerTest, RandomWalksHoldEveryPointInViewOnceAndEvictExactly) {
   for (uint64_t seed = 1; seed <= 3; ++seed) {
     for (const World& world : TestWorlds(seed)) {
       for (const bool held : {false, true}) {
-        Rng rng(HashWords({seed, static_cast<uint64_t>(world.algorithm), held}));
+        Rng rng(HashWords({seed, static_cast<uint64_t>(world.algorithm()), held}));
         const std::vector<PathStep> path = RandomPath(rng, world, 30, held);
         EXPECT_EQ(FollowPath(engine, world, rng, path), "")
-            << "seed " << seed << ", " << DescribeWorld(world) << ", held " << held;
+            << "seed " << seed << ", " << world.Describe() << ", held " << held;
       }
     }
   }
@@ -256,7 +257,7 @@ TEST(ViewportTrackerTest, RandomWalksHoldEveryPointInViewOnceAndEvictExactly) {
 
 // Each check of FollowPath must catch a fault planted in real answers.
 TEST(ViewportTrackerTest, PlantedFaultsAreCaught) {
-  const World world{.seed = 11};
+  const World world = ValidWorld({.seed = 11});
   PlaneEngine engine({.threads = 1});
   struct Fault {
     const char* name;
@@ -321,7 +322,7 @@ TEST(ViewportTrackerTest, PlantedFaultsAreCaught) {
 }
 
 TEST(ViewportTrackerTest, RegionsReturningAfterEvictionAreSentAgain) {
-  const World world{.seed = 2};
+  const World world = ValidWorld({.seed = 2});
   PlaneEngine engine({.threads = 1});
   ViewportTracker tracker(world);
   const ViewportUpdate here{.viewport = {0, 0, 20, 20}};
@@ -344,7 +345,7 @@ TEST(ViewportTrackerTest, RegionsReturningAfterEvictionAreSentAgain) {
 }
 
 TEST(ViewportTrackerTest, HeldRegionsAreNeverSent) {
-  const World world{.seed = 4};
+  const World world = ValidWorld({.seed = 4});
   PlaneEngine engine({.threads = 1});
   ViewportTracker tracker(world);
   ViewportUpdate update{.viewport = {-10, -10, 10, 10}, .held_regions = {{-1, -1}, {0, 0}}};
@@ -360,7 +361,7 @@ TEST(ViewportTrackerTest, HeldRegionsAreNeverSent) {
 }
 
 TEST(ViewportTrackerTest, PrefetchAreaLooksAheadAtMostOneViewport) {
-  const World world{.seed = 1, .min_distance = 2};
+  const World world = ValidWorld({.seed = 1, .min_distance = 2});
   const ViewportTracker tracker(world);
   ViewportUpdate still{.viewport = {0, 0, 64, 32}};
   EXPECT_FALSE(tracker.PrefetchArea(still).has_value());
@@ -393,7 +394,7 @@ TEST(ViewportTrackerTest, PrefetchAreaLooksAheadAtMostOneViewport) {
 TEST(ViewportTrackerTest, BadUpdatesAreRejectedNamingTheField) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  const World world{.seed = 1, .min_distance = 0.5};
+  const World world = ValidWorld({.seed = 1, .min_distance = 0.5});
   const ViewportUpdate good{.viewport = {0, 0, 10, 10}, .velocity = {1, 2}, .keep_margin = 3};
   ASSERT_TRUE(ValidateViewportUpdate(world, good, 2000).ok());
   struct Case {

@@ -6,18 +6,18 @@
 namespace scallop {
 
 StatusOr<World> WorldFromMessage(const v1::World& message) {
-  World world;
-  world.seed = message.seed();
-  world.min_distance = message.min_distance();
+  WorldSpec spec;
+  spec.seed = message.seed();
+  spec.min_distance = message.min_distance();
   switch (message.algorithm()) {
     case v1::ALGORITHM_A1:
-      world.algorithm = Algorithm::kA1;
+      spec.algorithm = WorldAlgorithm::kA1;
       break;
     case v1::ALGORITHM_A2:
-      world.algorithm = Algorithm::kA2;
+      spec.algorithm = WorldAlgorithm::kA2;
       break;
     case v1::ALGORITHM_A3:
-      world.algorithm = Algorithm::kA3;
+      spec.algorithm = WorldAlgorithm::kA3;
       break;
     default:
       return InvalidArgument(
@@ -26,30 +26,31 @@ StatusOr<World> WorldFromMessage(const v1::World& message) {
   }
   // proto3 cannot tell an unset double from 0, and 0 is never a valid density
   // or version, so 0 safely means "the default".
-  world.density = message.density() == 0.0 ? 2.0 : message.density();
-  world.generator_version =
+  spec.density = message.density() == 0.0 ? 2.0 : message.density();
+  spec.generator_version =
       message.generator_version() == 0 ? kGeneratorVersion : message.generator_version();
-  if (Status status = ValidateWorld(world); !status.ok()) return status;
-  return CanonicalWorld(world);
+  return World::Create(spec);
 }
 
-v1::World WorldToMessage(const World& world) {
+v1::World WorldToMessage(const World& world) { return WorldToMessage(world.spec()); }
+
+v1::World WorldToMessage(const WorldSpec& spec) {
   v1::World message;
-  message.set_seed(world.seed);
-  message.set_min_distance(world.min_distance);
-  switch (world.algorithm) {
-    case Algorithm::kA1:
+  message.set_seed(spec.seed);
+  message.set_min_distance(spec.min_distance);
+  switch (spec.algorithm) {
+    case WorldAlgorithm::kA1:
       message.set_algorithm(v1::ALGORITHM_A1);
       break;
-    case Algorithm::kA2:
+    case WorldAlgorithm::kA2:
       message.set_algorithm(v1::ALGORITHM_A2);
       break;
-    default:
+    case WorldAlgorithm::kA3:
       message.set_algorithm(v1::ALGORITHM_A3);
       break;
   }
-  message.set_density(CanonicalWorld(world).density);
-  message.set_generator_version(world.generator_version);
+  message.set_density(spec.density);
+  message.set_generator_version(spec.generator_version);
   return message;
 }
 

@@ -13,15 +13,18 @@
 
 namespace scallop {
 
-// The message's world, with its zero defaults filled in and ValidateWorld
-// applied. INVALID_ARGUMENT naming the field (world.algorithm, world.density,
-// world.min_distance, world.generator_version) otherwise.
+// The message's world, with its zero defaults filled in, validated
+// (World::Create). INVALID_ARGUMENT naming the field (world.algorithm,
+// world.density, world.min_distance, world.generator_version) otherwise.
 StatusOr<World> WorldFromMessage(const v1::World& message);
 
 // The world as a message, every field explicit (no zero defaults left).
 v1::World WorldToMessage(const World& world);
+// A spec as a message, field for field, valid or not: what a client sends
+// for the server to judge.
+v1::World WorldToMessage(const WorldSpec& spec);
 
-// Field-for-field; the range checks are PlaneEngine::ValidateQuery's.
+// Field-for-field; the range checks are CheckQueryRect's (query_rect.h).
 Rect RectFromMessage(const v1::Rect& message);
 v1::Rect RectToMessage(const Rect& rect);
 

@@ -9,6 +9,7 @@
 
 #include "follow_client.h"
 #include "scallopd_process.h"
+#include "tests/test_worlds.h"
 #include "world_messages.h"
 
 namespace scallop::testing {
@@ -21,7 +22,7 @@ struct BadRequest {
   const char* message_part;  // the field the message must name
 };
 
-v1::GetPointsRequest Request(const World& world, const Rect& rect) {
+v1::GetPointsRequest Request(const WorldSpec& world, const Rect& rect) {
   v1::GetPointsRequest request;
   *request.mutable_world() = WorldToMessage(world);
   *request.mutable_rect() = RectToMessage(rect);
@@ -31,7 +32,7 @@ v1::GetPointsRequest Request(const World& world, const Rect& rect) {
 std::vector<BadRequest> BadRequests() {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  const World good{.seed = 5};
+  const WorldSpec good{.seed = 5};
   const Rect square{0, 0, 10, 10};
   std::vector<BadRequest> cases;
   auto add = [&](const char* name, v1::GetPointsRequest request, grpc::StatusCode code,
@@ -48,13 +49,16 @@ std::vector<BadRequest> BadRequests() {
   v1::GetPointsRequest no_rect;
   *no_rect.mutable_world() = WorldToMessage(good);
   add("missing rect", no_rect, INVALID_ARGUMENT, "rect: required");
-  add("zero d", Request(World{.min_distance = 0}, square), INVALID_ARGUMENT, "world.min_distance");
-  add("negative d", Request(World{.min_distance = -1}, square), INVALID_ARGUMENT,
+  add("zero d", Request(WorldSpec{.min_distance = 0}, square), INVALID_ARGUMENT,
       "world.min_distance");
-  add("nan d", Request(World{.min_distance = nan}, square), INVALID_ARGUMENT, "world.min_distance");
-  add("density above 2", Request(World{.algorithm = Algorithm::kA1, .density = 2.5}, square),
+  add("negative d", Request(WorldSpec{.min_distance = -1}, square), INVALID_ARGUMENT,
+      "world.min_distance");
+  add("nan d", Request(WorldSpec{.min_distance = nan}, square), INVALID_ARGUMENT,
+      "world.min_distance");
+  add("density above 2",
+      Request(WorldSpec{.algorithm = WorldAlgorithm::kA1, .density = 2.5}, square),
       INVALID_ARGUMENT, "world.density");
-  add("density at 1", Request(World{.algorithm = Algorithm::kA2, .density = 1.0}, square),
+  add("density at 1", Request(WorldSpec{.algorithm = WorldAlgorithm::kA2, .density = 1.0}, square),
       INVALID_ARGUMENT, "world.density");
   auto unspecified = Request(good, square);
   unspecified.mutable_world()->set_algorithm(v1::ALGORITHM_UNSPECIFIED);
@@ -71,7 +75,7 @@ std::vector<BadRequest> BadRequests() {
   add("beyond the precision range", Request(good, {0x1.0p33, 0, 0x1.0p33 + 10, 10}), OUT_OF_RANGE,
       "rect.x0");
   add("beyond the precision range, small d",
-      Request(World{.min_distance = 1e-3}, {0, 5e6, 10, 5e6 + 1}), OUT_OF_RANGE, "rect.y0");
+      Request(WorldSpec{.min_distance = 1e-3}, {0, 5e6, 10, 5e6 + 1}), OUT_OF_RANGE, "rect.y0");
   auto negative_page = Request(good, square);
   negative_page.set_page_size(-1);
   add("negative page size", negative_page, INVALID_ARGUMENT, "page_size");
@@ -91,7 +95,7 @@ class E2eErrorsTest : public ::testing::Test {
   static void ExpectStillServing() {
     v1::GetPointsResponse response;
     grpc::Status status =
-        server_->Client().GetPoints(Request(World{.seed = 5}, {0, 0, 20, 20}), response);
+        server_->Client().GetPoints(Request(WorldSpec{.seed = 5}, {0, 0, 20, 20}), response);
     ASSERT_TRUE(status.ok()) << client::DescribeStatus(status);
     EXPECT_GT(response.points().ids_size(), 100);
   }
@@ -129,7 +133,7 @@ TEST_F(E2eErrorsTest, EveryBadInputGetsItsCodeAndNamesTheField) {
 
 TEST_F(E2eErrorsTest, TamperedOrForeignPageTokensAreRejected) {
   client::ScallopClient client = server_->Client();
-  auto request = Request(World{.seed = 5}, {0, 0, 40, 40});
+  auto request = Request(WorldSpec{.seed = 5}, {0, 0, 40, 40});
   request.set_page_size(100);
   v1::GetPointsResponse first;
   ASSERT_TRUE(client.GetPoints(request, first).ok());
@@ -165,7 +169,8 @@ TEST_F(E2eErrorsTest, TamperedOrForeignPageTokensAreRejected) {
 TEST_F(E2eErrorsTest, VerifyLimitsItsAreaAndReportsAPass) {
   client::ScallopClient client = server_->Client();
   v1::VerifyRequest request;
-  *request.mutable_world() = WorldToMessage(World{.seed = 9, .algorithm = Algorithm::kA2});
+  *request.mutable_world() =
+      WorldToMessage(ValidWorld({.seed = 9, .algorithm = WorldAlgorithm::kA2}));
   *request.mutable_rect() = RectToMessage({-30, -30, 30, 30});
   v1::VerifyResponse report;
   const grpc::Status status = client.Verify(request, report);
@@ -190,7 +195,7 @@ TEST(E2eLoadSheddingTest, RequestsBeyondMaxInFlightGetResourceExhausted) {
   client::ScallopClient client = server->Client();
   // Hold the only slot with a slow stream read one chunk at a time.
   v1::StreamPointsRequest slow;
-  *slow.mutable_world() = WorldToMessage(World{.seed = 2});
+  *slow.mutable_world() = WorldToMessage(ValidWorld({.seed = 2}));
   *slow.mutable_rect() = RectToMessage({0, 0, 4000, 4000});
   std::atomic<bool> holding{false}, release{false};
   std::thread holder([&] {
@@ -201,7 +206,7 @@ TEST(E2eLoadSheddingTest, RequestsBeyondMaxInFlightGetResourceExhausted) {
   });
   while (!holding) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   v1::GetPointsResponse response;
-  const grpc::Status shed = client.GetPoints(Request(World{}, {0, 0, 5, 5}), response);
+  const grpc::Status shed = client.GetPoints(Request(WorldSpec{}, {0, 0, 5, 5}), response);
   EXPECT_EQ(shed.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_NE(shed.error_message().find("max_in_flight"), std::string::npos);
   // Streams are shed the same way, and give back no slot they never had.
@@ -218,7 +223,7 @@ TEST(E2eLoadSheddingTest, RequestsBeyondMaxInFlightGetResourceExhausted) {
   {
     client::FollowSession follow(client);
     v1::FollowRequest update;
-    *update.mutable_world() = WorldToMessage(World{.seed = 2});
+    *update.mutable_world() = WorldToMessage(ValidWorld({.seed = 2}));
     *update.mutable_viewport() = RectToMessage({0, 0, 5, 5});
     const grpc::Status shed_follow = follow.Update(update, [](const v1::FollowResponse&) {});
     EXPECT_EQ(shed_follow.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
@@ -229,7 +234,7 @@ TEST(E2eLoadSheddingTest, RequestsBeyondMaxInFlightGetResourceExhausted) {
   // The slot is free again once the stream has ended.
   grpc::Status status;
   for (int attempt = 0; attempt < 100; ++attempt) {
-    status = client.GetPoints(Request(World{}, {0, 0, 5, 5}), response);
+    status = client.GetPoints(Request(WorldSpec{}, {0, 0, 5, 5}), response);
     if (status.ok()) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }

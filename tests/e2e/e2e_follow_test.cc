@@ -22,6 +22,7 @@
 #include "scallop/plane/point_id.h"
 #include "scallop/random/rng.h"
 #include "scallopd_process.h"
+#include "tests/test_worlds.h"
 #include "world_messages.h"
 
 namespace scallop::testing {
@@ -73,7 +74,7 @@ bool Overlaps(const Rect& a, const Rect& b) {
 bool Kept(const World& world, RegionKey key, const Rect& viewport, double margin) {
   const Rect grown{viewport.x0 - margin, viewport.y0 - margin, viewport.x1 + margin,
                    viewport.y1 + margin};
-  return Overlaps(RegionLayout(world.min_distance).RegionRect(key), grown);
+  return Overlaps(RegionLayout(world.min_distance()).RegionRect(key), grown);
 }
 
 // A follower checking every answer against the core; failures are reported
@@ -160,8 +161,9 @@ class CheckedFollower {
 TEST_F(E2eFollowTest, RandomWalksMatchTheWorldOverThePath) {
   PlaneEngine engine({.threads = 2});
   for (uint64_t seed = 1; seed <= 3; ++seed) {
-    const World world{.seed = seed * 1000 + 3, .min_distance = seed == 2 ? 0.25 : 1.0};
-    const double d = world.min_distance;
+    const World world =
+        ValidWorld({.seed = seed * 1000 + 3, .min_distance = seed == 2 ? 0.25 : 1.0});
+    const double d = world.min_distance();
     Rng rng(HashWords({seed, 8}));
     const client::ScallopClient client = server_->Client();
     client::FollowSession session(client);
@@ -219,7 +221,7 @@ bool ReportsFailure(const std::function<void()>& step, const std::string& part) 
 // Each check of CheckedFollower catches a fault planted in a real call: the
 // follower's store is made to disagree with what the server knows.
 TEST_F(E2eFollowTest, ChecksCatchPlantedFaults) {
-  const World world{.seed = 31};
+  const World world = ValidWorld({.seed = 31});
   PlaneEngine engine({.threads = 1});
   const client::ScallopClient client = server_->Client();
   auto region_points = [&](RegionKey key) {
@@ -265,7 +267,7 @@ TEST_F(E2eFollowTest, NamedWorldIsItsInlineTwin) {
   PlaneEngine engine({.threads = 1});
   const client::ScallopClient client = server_->Client();
   client::FollowSession session(client);
-  CheckedFollower follower(session, World{.seed = 7}, engine);
+  CheckedFollower follower(session, ValidWorld({.seed = 7}), engine);
   v1::FollowRequest first = Update({-20, -20, 30, 25});
   first.set_world_name("coast");
   ASSERT_TRUE(follower.Step(first, "named"));
@@ -276,7 +278,7 @@ TEST_F(E2eFollowTest, NamedWorldIsItsInlineTwin) {
 // A resumed session names the whole regions it holds: none of their points
 // comes again, and held plus received is the world in view.
 TEST_F(E2eFollowTest, HeldRegionsAreNotSentAgain) {
-  const World world{.seed = 21};
+  const World world = ValidWorld({.seed = 21});
   PlaneEngine engine({.threads = 1});
   const client::ScallopClient client = server_->Client();
   client::FollowedPoints cache;
@@ -351,7 +353,7 @@ TEST_F(E2eFollowTest, AClientThatStopsReadingIsDropped) {
   for (int n = 0; n < 40; ++n) {
     const double x = n % 2 == 0 ? 0.0 : 5000.0;
     v1::FollowRequest request = Update({x, 0, x + 190, 190});
-    if (n == 0) *request.mutable_world() = WorldToMessage(World{.seed = 5});
+    if (n == 0) *request.mutable_world() = WorldToMessage(ValidWorld({.seed = 5}));
     if (!session.SendOnly(request)) break;
   }
   // Not reading until the server has dropped the call (its log says so):
@@ -429,7 +431,7 @@ TEST_F(E2eFollowTest, BadUpdatesNameTheField) {
       {"bad inline world",
        with(good,
             [](auto& r) {
-              *r.mutable_world() = WorldToMessage(World{});
+              *r.mutable_world() = WorldToMessage(World());
               r.mutable_world()->set_min_distance(-1);
             }),
        {},

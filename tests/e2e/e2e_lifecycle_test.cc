@@ -10,6 +10,7 @@
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "scallop/plane/plane_engine.h"
 #include "scallopd_process.h"
+#include "tests/test_worlds.h"
 #include "world_messages.h"
 
 namespace scallop::testing {
@@ -19,7 +20,7 @@ using std::chrono::milliseconds;
 
 v1::StreamPointsRequest StreamRequest(const Rect& rect) {
   v1::StreamPointsRequest request;
-  *request.mutable_world() = WorldToMessage(World{.seed = 21});
+  *request.mutable_world() = WorldToMessage(ValidWorld({.seed = 21}));
   *request.mutable_rect() = RectToMessage(rect);
   return request;
 }
@@ -118,7 +119,7 @@ TEST(E2eLifecycleTest, SigtermGoesNotServingAndFinishesInFlightCallsThenExitsZer
   ASSERT_NE(log.find("StreamPoints"), std::string::npos) << log;
   EXPECT_LT(log.find("signal 15"), log.find("StreamPoints")) << log;
   PlaneEngine engine({.threads = 2});
-  StatusOr<PlanePoints> core = engine.Points(World{.seed = 21}, rect);
+  StatusOr<PlanePoints> core = engine.Points(ValidWorld({.seed = 21}), rect);
   ASSERT_TRUE(core.ok());
   EXPECT_EQ(core->ids, streamed.ids);
 }

@@ -7,6 +7,7 @@
 
 #include "metrics_scrape.h"
 #include "scallopd_process.h"
+#include "tests/test_worlds.h"
 #include "world_messages.h"
 
 namespace scallop::testing {
@@ -38,7 +39,7 @@ class E2eMetricsTest : public ::testing::Test {
 
 v1::GetPointsRequest PointsRequest(const Rect& rect) {
   v1::GetPointsRequest request;
-  *request.mutable_world() = WorldToMessage(World{.seed = 5});
+  *request.mutable_world() = WorldToMessage(ValidWorld({.seed = 5}));
   *request.mutable_rect() = RectToMessage(rect);
   return request;
 }

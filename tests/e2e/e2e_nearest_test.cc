@@ -12,6 +12,7 @@
 #include "scallop/noise/noise_grid.h"
 #include "scallop/random/rng.h"
 #include "scallopd_process.h"
+#include "tests/test_worlds.h"
 #include "world_messages.h"
 
 namespace scallop::testing {
@@ -60,7 +61,7 @@ std::vector<Vec2> TestPositions(uint64_t seed) {
   return positions;
 }
 
-v1::NearestRequest RequestFor(const World& world, const std::vector<Vec2>& positions) {
+v1::NearestRequest RequestFor(const WorldSpec& world, const std::vector<Vec2>& positions) {
   v1::NearestRequest request;
   *request.mutable_world() = WorldToMessage(world);
   for (const Vec2& p : positions) {
@@ -104,36 +105,37 @@ std::string* E2eNearestTest::config_path_ = nullptr;
 TEST_F(E2eNearestTest, AnswersAreTheCoresBitForBit) {
   client::ScallopClient client = server_->Client();
   for (const World& world :
-       {World{.seed = 7},
-        World{.seed = 11, .min_distance = 0.5, .algorithm = Algorithm::kA1, .density = 1.5}}) {
-    std::vector<Vec2> positions = TestPositions(world.seed);
-    if (world.min_distance != 1) {
-      for (Vec2& p : positions) p = {p.x * world.min_distance, p.y * world.min_distance};
+       {ValidWorld({.seed = 7}),
+        ValidWorld(
+            {.seed = 11, .min_distance = 0.5, .algorithm = WorldAlgorithm::kA1, .density = 1.5})}) {
+    std::vector<Vec2> positions = TestPositions(world.seed());
+    if (world.min_distance() != 1) {
+      for (Vec2& p : positions) p = {p.x * world.min_distance(), p.y * world.min_distance()};
     }
     v1::NearestResponse response;
-    const grpc::Status status = client.Nearest(RequestFor(world, positions), response);
+    const grpc::Status status = client.Nearest(RequestFor(world.spec(), positions), response);
     ASSERT_TRUE(status.ok()) << client::DescribeStatus(status);
-    EXPECT_TRUE(SameAnswers(CoreAnswers(world, positions), response)) << DescribeWorld(world);
-    EXPECT_EQ(response.world().min_distance(), world.min_distance);
+    EXPECT_TRUE(SameAnswers(CoreAnswers(world, positions), response)) << world.Describe();
+    EXPECT_EQ(response.world().min_distance(), world.min_distance());
   }
 }
 
 TEST_F(E2eNearestTest, NamedWorldAnswersAsItsInlineTwin) {
   client::ScallopClient client = server_->Client();
   const std::vector<Vec2> positions = TestPositions(3);
-  v1::NearestRequest request = RequestFor(World{.seed = 7}, positions);
+  v1::NearestRequest request = RequestFor(WorldSpec{.seed = 7}, positions);
   request.set_world_name("coast");
   v1::NearestResponse response;
   ASSERT_TRUE(client.Nearest(request, response).ok());
-  EXPECT_TRUE(SameAnswers(CoreAnswers(World{.seed = 7}, positions), response));
+  EXPECT_TRUE(SameAnswers(CoreAnswers(ValidWorld({.seed = 7}), positions), response));
 }
 
 TEST_F(E2eNearestTest, ComparisonCatchesPlantedFaults) {
-  const World world{.seed = 7};
+  const World world = ValidWorld({.seed = 7});
   const std::vector<Vec2> positions = TestPositions(5);
   const std::vector<NearestPoint> answers = CoreAnswers(world, positions);
   v1::NearestResponse response;
-  ASSERT_TRUE(server_->Client().Nearest(RequestFor(world, positions), response).ok());
+  ASSERT_TRUE(server_->Client().Nearest(RequestFor(world.spec(), positions), response).ok());
   ASSERT_TRUE(SameAnswers(answers, response));
   v1::NearestResponse fault = response;
   fault.set_f2(17, std::nextafter(fault.f2(17), 10.0));
@@ -152,35 +154,35 @@ TEST_F(E2eNearestTest, RefusesBadBatchesNamingTheField) {
     v1::NearestResponse response;
     return client.Nearest(request, response);
   };
-  v1::NearestRequest request = RequestFor(World{.seed = 7}, {{0, 0}, {1, 1}});
+  v1::NearestRequest request = RequestFor(WorldSpec{.seed = 7}, {{0, 0}, {1, 1}});
   request.mutable_positions()->add_xs(2);
   grpc::Status status = call(request);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_EQ(status.error_message().rfind("positions:", 0), 0u) << status.error_message();
 
-  status = call(RequestFor(World{.seed = 7}, std::vector<Vec2>(kBatchLimit + 1)));
+  status = call(RequestFor(WorldSpec{.seed = 7}, std::vector<Vec2>(kBatchLimit + 1)));
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_NE(status.error_message().find("max_nearest_batch"), std::string::npos);
-  EXPECT_TRUE(call(RequestFor(World{.seed = 7}, std::vector<Vec2>(kBatchLimit))).ok());
+  EXPECT_TRUE(call(RequestFor(WorldSpec{.seed = 7}, std::vector<Vec2>(kBatchLimit))).ok());
 
-  status = call(RequestFor(World{.seed = 7}, {{0, 0}, {0, 0x1.0p32 + 1}}));
+  status = call(RequestFor(WorldSpec{.seed = 7}, {{0, 0}, {0, 0x1.0p32 + 1}}));
   EXPECT_EQ(status.error_code(), grpc::StatusCode::OUT_OF_RANGE);
   EXPECT_NE(status.error_message().find("positions[1].y"), std::string::npos);
-  status = call(RequestFor(World{.seed = 7}, {{NAN, 0}}));
+  status = call(RequestFor(WorldSpec{.seed = 7}, {{NAN, 0}}));
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_NE(status.error_message().find("positions[0].x"), std::string::npos);
 
-  request = RequestFor(World{.seed = 7}, {{0, 0}});
+  request = RequestFor(WorldSpec{.seed = 7}, {{0, 0}});
   request.set_world_name("atlantis");
   EXPECT_EQ(call(request).error_code(), grpc::StatusCode::NOT_FOUND);
-  request = RequestFor(World{.seed = 7, .min_distance = 0}, {{0, 0}});
+  request = RequestFor(WorldSpec{.seed = 7, .min_distance = 0}, {{0, 0}});
   EXPECT_EQ(call(request).error_code(), grpc::StatusCode::INVALID_ARGUMENT);
-  EXPECT_TRUE(call(RequestFor(World{.seed = 7}, {})).ok()) << "an empty batch is no error";
+  EXPECT_TRUE(call(RequestFor(WorldSpec{.seed = 7}, {})).ok()) << "an empty batch is no error";
 }
 
 TEST_F(E2eNearestTest, NoiseGridIsTheCoresImage) {
   client::ScallopClient client = server_->Client();
-  const World world{.seed = 7};
+  const World world = ValidWorld({.seed = 7});
   PlaneEngine engine({.threads = 1});
   NearestLookup lookup(engine);
   const std::pair<v1::NoiseChannel, NoiseChannel> channels[] = {

@@ -10,6 +10,7 @@
 
 #include "scallop/plane/plane_engine.h"
 #include "scallopd_process.h"
+#include "tests/test_worlds.h"
 #include "world_messages.h"
 
 namespace scallop::testing {
@@ -69,7 +70,7 @@ class E2ePointsTest : public ::testing::Test {
 ScallopdProcess* E2ePointsTest::server_ = nullptr;
 
 TEST(E2eComparisonTest, CatchesPlantedFaults) {
-  const PlanePoints points = CorePoints(World{.seed = 4}, {0, 0, 20, 20});
+  const PlanePoints points = CorePoints(ValidWorld({.seed = 4}), {0, 0, 20, 20});
   ASSERT_GT(points.ids.size(), 10u);
   EXPECT_TRUE(SamePoints(points, points));
   PlanePoints last_bit = points;
@@ -88,10 +89,11 @@ TEST_F(E2ePointsTest, UnaryPagedStreamedAndCoreAgree) {
   // Corners off the region grid, so every query cuts regions at all four sides.
   const Rect rect{-37.25, -20.5, 41.75, 50.125};
   for (const World& world :
-       {World{.seed = 7, .algorithm = Algorithm::kA3},
-        World{.seed = 11, .min_distance = 0.5, .algorithm = Algorithm::kA1, .density = 1.5},
-        World{.seed = 3, .algorithm = Algorithm::kA2}}) {
-    SCOPED_TRACE(DescribeWorld(world));
+       {ValidWorld({.seed = 7, .algorithm = WorldAlgorithm::kA3}),
+        ValidWorld(
+            {.seed = 11, .min_distance = 0.5, .algorithm = WorldAlgorithm::kA1, .density = 1.5}),
+        ValidWorld({.seed = 3, .algorithm = WorldAlgorithm::kA2})}) {
+    SCOPED_TRACE(world.Describe());
     const PlanePoints core = CorePoints(world, rect);
     ASSERT_GT(core.ids.size(), 1000u);
     client::ScallopClient client = server_->Client();
@@ -130,7 +132,8 @@ TEST_F(E2ePointsTest, NamedWorldEqualsItsInlineTwin) {
   *request.mutable_rect() = RectToMessage(rect);
   PlanePoints named;
   ASSERT_TRUE(server_->Client().GetAllPoints(request, named).ok());
-  const World dense{.seed = 11, .min_distance = 0.5, .algorithm = Algorithm::kA1, .density = 1.5};
+  const World dense = ValidWorld(
+      {.seed = 11, .min_distance = 0.5, .algorithm = WorldAlgorithm::kA1, .density = 1.5});
   ExpectSamePoints(CorePoints(dense, rect), named, "named");
 }
 
@@ -147,7 +150,7 @@ TEST_F(E2ePointsTest, DescribeWorldAndServerInfo) {
   EXPECT_EQ(world.world().generator_version(), kGeneratorVersion);
   EXPECT_EQ(world.region_side(), 16.0);
   EXPECT_EQ(world.precision_limit(), 0x1.0p32);
-  EXPECT_EQ(world.fingerprint(), WorldFingerprint(World{.seed = 7}));
+  EXPECT_EQ(world.fingerprint(), ValidWorld({.seed = 7}).fingerprint());
 
   v1::DescribeWorldRequest default_world;  // no world: the server's default
   ASSERT_TRUE(client.DescribeWorld(default_world, world).ok());
@@ -167,7 +170,7 @@ TEST_F(E2ePointsTest, DescribeWorldAndServerInfo) {
 TEST_F(E2ePointsTest, ConcurrentCallsForTheSameColdRegionsAgree) {
   // Eight clients at once on regions nobody asked for yet: they share the
   // generation (one region cache) and must all see the same points.
-  const World world{.seed = 77, .algorithm = Algorithm::kA2};
+  const World world = ValidWorld({.seed = 77, .algorithm = WorldAlgorithm::kA2});
   const Rect rect{-500, 300, -400, 400};
   const PlanePoints core = CorePoints(world, rect);
   std::vector<PlanePoints> answers(8);

@@ -11,6 +11,7 @@
 #include "metrics_scrape.h"
 #include "scallop/random/rng.h"
 #include "scallopd_process.h"
+#include "tests/test_worlds.h"
 #include "world_messages.h"
 
 namespace scallop::testing {
@@ -62,9 +63,9 @@ TEST_F(E2eScaleOutTest, EveryAnswerEqualsASingleServers) {
     if (trial % 3 == 0) {
       request.set_world_name("hills");
     } else {
-      const Algorithm algorithm = trial % 3 == 1 ? Algorithm::kA3 : Algorithm::kA2;
-      *request.mutable_world() =
-          WorldToMessage(World{.seed = rng.NextBits(), .min_distance = 1, .algorithm = algorithm});
+      const WorldAlgorithm algorithm = trial % 3 == 1 ? WorldAlgorithm::kA3 : WorldAlgorithm::kA2;
+      *request.mutable_world() = WorldToMessage(
+          ValidWorld({.seed = rng.NextBits(), .min_distance = 1, .algorithm = algorithm}));
     }
     const double x = (rng.Uniform() - 0.5) * 2000, y = (rng.Uniform() - 0.5) * 2000;
     *request.mutable_rect() =

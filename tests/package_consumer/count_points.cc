@@ -12,10 +12,16 @@ int main(int argc, char** argv) {
     return 2;
   }
   scallop::PlaneEngine engine({.threads = 1});
-  const scallop::World world{.seed = std::strtoull(argv[1], nullptr, 10)};
+  // Every seed makes a valid world; World::Create is how any other spec is checked.
+  const scallop::StatusOr<scallop::World> world =
+      scallop::World::Create({.seed = std::strtoull(argv[1], nullptr, 10)});
+  if (!world.ok()) {
+    std::cerr << world.status().message() << '\n';
+    return 2;
+  }
   const scallop::Rect rect{std::atof(argv[2]), std::atof(argv[3]), std::atof(argv[4]),
                            std::atof(argv[5])};
-  const scallop::StatusOr<int64_t> count = engine.Count(world, rect);
+  const scallop::StatusOr<int64_t> count = engine.Count(*world, rect);
   if (!count.ok()) {
     std::cerr << count.status().message() << '\n';
     return 1;

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "scallop/base/status.h"
+#include "scallop/geometry/domain.h"
 #include "scallop/geometry/vec2.h"
-#include "scallop/sampling/sampler.h"
 
 namespace scallop {
 

@@ -83,7 +83,7 @@ NearestPoint FromTwoNearest(const TwoNearest& best) {
 
 size_t NearestLookup::KeyHash::operator()(const Key& key) const {
   return static_cast<size_t>(
-      HashWords({WorldFingerprint(key.world), static_cast<uint64_t>(key.region.i),
+      HashWords({key.world.fingerprint(), static_cast<uint64_t>(key.region.i),
                  static_cast<uint64_t>(key.region.j)}));
 }
 
@@ -129,7 +129,7 @@ void NearestLookup::ReturnScratch(std::unique_ptr<Scratch> scratch) {
 }
 
 Status NearestLookup::ValidatePosition(const World& world, Vec2 position, size_t index) {
-  const double limit = RegionLayout(world.min_distance).precision_limit();
+  const double limit = RegionLayout(world.min_distance()).precision_limit();
   // The message is built only on failure: this runs once per position.
   if (std::abs(position.x) <= limit && std::abs(position.y) <= limit) return Status::Ok();
   const std::pair<char, double> coordinates[] = {{'x', position.x}, {'y', position.y}};
@@ -146,23 +146,21 @@ Status NearestLookup::ValidatePosition(const World& world, Vec2 position, size_t
 
 Status NearestLookup::Nearest(const World& world, std::span<const Vec2> positions,
                               std::span<NearestPoint> results) {
-  if (Status status = ValidateWorld(world); !status.ok()) return status;
   if (results.size() != positions.size()) {
     return InvalidArgument("results: must have one entry per position");
   }
   // ValidatePosition's test inline; the call only to name a bad position.
-  const double limit = RegionLayout(world.min_distance).precision_limit();
+  const double limit = RegionLayout(world.min_distance()).precision_limit();
   for (size_t k = 0; k < positions.size(); ++k) {
     const Vec2 p = positions[k];
     if (!(std::abs(p.x) <= limit && std::abs(p.y) <= limit)) {
       return ValidatePosition(world, p, k);
     }
   }
-  const World canonical = CanonicalWorld(world);
   int64_t fallbacks = 0;
   // The exact answer at p from the engine's points, when no grid certifies one.
   auto answer_by_brute_force = [&](size_t k, Vec2 p) -> Status {
-    StatusOr<TwoNearest> exact = BruteForce(canonical, p);
+    StatusOr<TwoNearest> exact = BruteForce(world, p);
     if (!exact.ok()) return exact.status();
     results[k] = FromTwoNearest(*exact);
     return Status::Ok();
@@ -174,7 +172,7 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   } else {
     std::unique_ptr<Scratch> scratch = TakeScratch();
     std::vector<GridHandle> grids;
-    if (Status status = AssignGrids(canonical, positions, grids, scratch->grid_of); !status.ok()) {
+    if (Status status = AssignGrids(world, positions, grids, scratch->grid_of); !status.ok()) {
       return status;
     }
     // Positions grouped by grid (a counting sort, stable), so each grid is
@@ -219,7 +217,7 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
 
 Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> positions,
                                   std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of) {
-  const RegionLayout layout(world.min_distance);
+  const RegionLayout layout(world.min_distance());
   const double inverse_side = 1.0 / layout.side();
   struct CallSlot {
     RegionKey key;
@@ -290,7 +288,7 @@ StatusOr<NearestLookup::GridHandle> NearestLookup::Grid(const World& world, Regi
     }
   }
   // The grid needs every point of its square grown by 1 d (nearest_search_grid.h).
-  const double d = world.min_distance;
+  const double d = world.min_distance();
   const Rect covered = NearestSearchGrid::CoveredSquare(d, region);
   const Rect source = ClipToRange({covered.x0 - d, covered.y0 - d, covered.x1 + d, covered.y1 + d},
                                   RegionLayout(d).precision_limit());
@@ -315,7 +313,7 @@ StatusOr<NearestLookup::GridHandle> NearestLookup::Grid(const World& world, Regi
 }
 
 StatusOr<TwoNearest> NearestLookup::BruteForce(const World& world, Vec2 p) {
-  const double d = world.min_distance;
+  const double d = world.min_distance();
   const double limit = RegionLayout(d).precision_limit();
   // Squares of side 8 d to 64 d: on a maximal world the first one always
   // holds the answer (F2 < 2 d); the larger ones only guard against a world

@@ -60,7 +60,7 @@ class NearestLookup {
 
   // The basis at each position: results[k] answers positions[k]. Nothing is
   // written unless every position is valid.
-  // Rejects: an invalid world (ValidateWorld); INVALID_ARGUMENT for a
+  // Rejects: INVALID_ARGUMENT for a
   // non-finite coordinate; OUT_OF_RANGE for |x| or |y| > 2^32 d; errors name
   // the position, e.g. "positions[3].x".
   // Cost, warm: about 50 ns of CPU a position on this project's shared
@@ -80,7 +80,7 @@ class NearestLookup {
  private:
   using GridHandle = std::shared_ptr<const NearestSearchGrid>;
   struct Key {
-    World world;  // canonical
+    World world;
     RegionKey region;
     friend bool operator==(const Key&, const Key&) = default;
   };

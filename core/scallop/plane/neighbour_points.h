@@ -32,7 +32,7 @@ struct NeighbourPoints {
 //   - else left out.
 // Each list holds the neighbours in order, each one's own points then its
 // spill, in their stored order: the sampler's output depends on it.
-// REQUIRES: ValidateWorld(world).ok(). Cost: a few comparisons for each of
+// Cost: a few comparisons for each of
 // the neighbours' points (about 3,000 for a rank-3 region), and an exact
 // measure only for the few hundred near the region.
 NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,

@@ -5,13 +5,12 @@
 #include <algorithm>
 #include <boost/asio/post.hpp>
 #include <boost/asio/thread_pool.hpp>
-#include <cmath>
 #include <latch>
 #include <map>
 #include <set>
-#include <string>
 
 #include "scallop/plane/point_id.h"
+#include "scallop/plane/query_rect.h"
 
 namespace scallop {
 
@@ -27,49 +26,14 @@ PlaneEngine::~PlaneEngine() {
 }
 
 Status PlaneEngine::ValidateQuery(const World& world, const Rect& rect) const {
-  if (Status status = ValidateWorld(world); !status.ok()) return status;
-  const std::pair<const char*, double> corners[] = {
-      {"rect.x0", rect.x0}, {"rect.y0", rect.y0}, {"rect.x1", rect.x1}, {"rect.y1", rect.y1}};
-  const double limit = RegionLayout(world.min_distance).precision_limit();
-  for (const auto& [field, value] : corners) {
-    if (!std::isfinite(value)) return InvalidArgument(std::string(field) + ": must be finite");
-    if (std::abs(value) > limit) {
-      return OutOfRange(std::string(field) +
-                        ": |value| must be at most 2^32 * min_distance = " + std::to_string(limit));
-    }
-  }
-  if (!(rect.x0 < rect.x1)) return InvalidArgument("rect: x0 must be less than x1");
-  if (!(rect.y0 < rect.y1)) return InvalidArgument("rect: y0 must be less than y1");
-  const double d = world.min_distance;
-  if (rect.Width() / d * (rect.Height() / d) > options_.max_query_area) {
-    return InvalidArgument("rect: area must be at most " + std::to_string(options_.max_query_area) +
-                           " * min_distance^2");
-  }
-  // Cost follows the regions a query overlaps, not its area: a thin sliver
-  // can overlap millions. Allow the regions of the largest square query.
-  const RegionLayout layout(world.min_distance);
-  const double columns = static_cast<double>(layout.IndexOf(rect.x1) - layout.IndexOf(rect.x0) + 1);
-  const double rows = static_cast<double>(layout.IndexOf(rect.y1) - layout.IndexOf(rect.y0) + 1);
-  const double side_in_regions = std::sqrt(options_.max_query_area) / kRegionSideInD + 2;
-  if (columns * rows > side_in_regions * side_in_regions) {
-    return InvalidArgument("rect: overlaps " + std::to_string(columns * rows) +
-                           " regions of 16 * min_distance; the limit is " +
-                           std::to_string(side_in_regions * side_in_regions) +
-                           " (a long thin rectangle costs as much as its regions)");
-  }
-  return Status::Ok();
+  return CheckQueryRect(world, rect, {.max_area = options_.max_query_area});
 }
 
-std::vector<RegionKey> PlaneEngine::RegionsOverlapping(const World& world, const Rect& rect) const {
-  const RegionLayout layout(world.min_distance);
-  const RegionKey low = layout.RegionOf(rect.x0, rect.y0);
-  // The half-open rectangle ends just before x1: the last column is the one
-  // owning the largest double below x1.
-  const RegionKey high =
-      layout.RegionOf(std::nextafter(rect.x1, rect.x0), std::nextafter(rect.y1, rect.y0));
+std::vector<RegionKey> PlaneEngine::RegionsOverlapping(const World& world, const Rect& rect) {
+  const RegionRange range = scallop::RegionsOverlapping(RegionLayout(world.min_distance()), rect);
   std::vector<RegionKey> keys;
-  for (int64_t j = low.j; j <= high.j; ++j) {
-    for (int64_t i = low.i; i <= high.i; ++i) keys.push_back({i, j});
+  for (int64_t j = range.low.j; j <= range.high.j; ++j) {
+    for (int64_t i = range.low.i; i <= range.high.i; ++i) keys.push_back({i, j});
   }
   return keys;
 }
@@ -162,7 +126,7 @@ StatusOr<PlanePoints> PlaneEngine::Points(const World& world, const Rect& rect) 
   PlanePoints result;
   result.positions.reserve(upper_bound);
   result.ids.reserve(upper_bound);
-  VisitPoints(*regions, RegionLayout(world.min_distance), rect, 0, upper_bound,
+  VisitPoints(*regions, RegionLayout(world.min_distance()), rect, 0, upper_bound,
               [&](const Vec2& position, uint64_t id) {
                 result.positions.push_back(position);
                 result.ids.push_back(id);
@@ -181,10 +145,7 @@ StatusOr<int64_t> PlaneEngine::Count(const World& world, const Rect& rect) {
 }
 
 StatusOr<RegionHandle> PlaneEngine::Region(const World& world, RegionKey key) {
-  if (Status status = ValidateWorld(world); !status.ok()) return status;
-  // Regions -2^28 .. 2^28 - 1 tile exactly [-2^32 d, 2^32 d); checked on the
-  // key, because the rectangle of an extreme key would overflow.
-  constexpr auto kRegionsPerHalfAxis = static_cast<int64_t>(kPrecisionRangeInD / kRegionSideInD);
+  // Checked on the key, because the rectangle of an extreme key would overflow.
   if (key.i < -kRegionsPerHalfAxis || key.i >= kRegionsPerHalfAxis ||
       key.j < -kRegionsPerHalfAxis || key.j >= kRegionsPerHalfAxis) {
     return OutOfRange("region: lies beyond the precision range of 2^32 * min_distance");

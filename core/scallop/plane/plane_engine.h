@@ -28,7 +28,8 @@ struct PlaneEngineOptions {
   int64_t cache_bytes = int64_t{512} << 20;
   // Threads that generate regions; 1 generates on the calling thread.
   int threads = 2;
-  // Largest query area, in units of d^2 (1e8 d^2 is about 85M points).
+  // Largest query area, in units of d^2 (1e8 d^2 is about 85M points); a
+  // server sets it to the largest of its methods' limits.
   double max_query_area = 1e8;
 };
 
@@ -49,9 +50,10 @@ class PlaneEngine {
   // The world's points in the half-open rectangle. Cost: O(area / d^2) for
   // the regions it overlaps plus a halo of at most 2 regions on each side
   // when cold; a copy when warm.
-  // Rejects: an invalid world (ValidateWorld); INVALID_ARGUMENT for a
-  // non-finite, empty or inverted rectangle or one larger than
-  // max_query_area d^2; OUT_OF_RANGE for a corner beyond 2^32 d.
+  // Rejects what CheckQueryRect (query_rect.h) rejects under max_query_area:
+  // INVALID_ARGUMENT for a non-finite, empty or inverted rectangle, one larger
+  // than max_query_area d^2 or crossing more than max_query_area / 64 + 16
+  // regions; OUT_OF_RANGE for a corner beyond 2^32 d.
   StatusOr<PlanePoints> Points(const World& world, const Rect& rect);
 
   // The regions a query of the rectangle reads, in query order (rows, then
@@ -70,7 +72,8 @@ class PlaneEngine {
   // One whole region, shared (no copy). OUT_OF_RANGE beyond the precision range.
   StatusOr<RegionHandle> Region(const World& world, RegionKey key);
 
-  // The same checks Points applies, for callers that validate at the edge.
+  // The checks Points applies (CheckQueryRect under max_query_area), for
+  // callers that validate at the edge.
   Status ValidateQuery(const World& world, const Rect& rect) const;
 
   RegionCacheStats CacheStats() const { return cache_.Stats(); }
@@ -80,7 +83,7 @@ class PlaneEngine {
   // Generated regions for `wanted` (all of them, in `wanted`'s order),
   // generating missing ones and their lower-ranked dependencies rank by rank.
   std::vector<RegionHandle> Resolve(const World& world, const std::vector<RegionKey>& wanted);
-  std::vector<RegionKey> RegionsOverlapping(const World& world, const Rect& rect) const;
+  static std::vector<RegionKey> RegionsOverlapping(const World& world, const Rect& rect);
 
   PlaneEngineOptions options_;
   RegionCache cache_;

@@ -6,12 +6,12 @@
 namespace scallop {
 
 size_t RegionCache::KeyHash::operator()(const Key& k) const {
-  return HashWords({WorldFingerprint(k.world), static_cast<uint64_t>(k.region.i),
+  return HashWords({k.world.fingerprint(), static_cast<uint64_t>(k.region.i),
                     static_cast<uint64_t>(k.region.j)});
 }
 
 RegionCache::Lookup RegionCache::Acquire(const World& world, RegionKey key) {
-  const Key k{CanonicalWorld(world), key};
+  const Key k{world, key};
   std::lock_guard lock(mutex_);
   auto it = entries_.find(k);
   if (it != entries_.end()) {
@@ -32,7 +32,7 @@ RegionCache::Lookup RegionCache::Acquire(const World& world, RegionKey key) {
 }
 
 RegionHandle RegionCache::Peek(const World& world, RegionKey key) {
-  const Key k{CanonicalWorld(world), key};
+  const Key k{world, key};
   std::lock_guard lock(mutex_);
   auto it = entries_.find(k);
   if (it == entries_.end() || !it->second.region) return nullptr;
@@ -42,7 +42,7 @@ RegionHandle RegionCache::Peek(const World& world, RegionKey key) {
 }
 
 void RegionCache::Publish(const World& world, RegionKey key, RegionHandle region) {
-  const Key k{CanonicalWorld(world), key};
+  const Key k{world, key};
   std::shared_ptr<std::promise<RegionHandle>> promise;
   {
     std::lock_guard lock(mutex_);

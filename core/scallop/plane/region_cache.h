@@ -56,7 +56,7 @@ class RegionCache {
 
  private:
   struct Key {
-    World world;  // canonical
+    World world;
     RegionKey region;
     friend bool operator==(const Key&, const Key&) = default;
   };

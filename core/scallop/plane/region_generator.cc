@@ -71,8 +71,8 @@ void StorePlaced(const std::vector<Vec2>& placed, const std::vector<bool>& place
 
 RegionPoints GenerateRegion(const World& world, RegionKey key,
                             std::span<const RegionPoints* const> lower_neighbours) {
-  const RegionLayout layout(world.min_distance);
-  const double d = world.min_distance;
+  const RegionLayout layout(world.min_distance());
+  const double d = world.min_distance();
   const Rect rect = layout.RegionRect(key);
   const Rect sampled = Grown(rect, kSamplingMarginInD * d);
   // The neighbours' points constrain and seed the run; their spill inside the
@@ -87,24 +87,24 @@ RegionPoints GenerateRegion(const World& world, RegionKey key,
   SamplingProblem problem;
   problem.domain = {sampled, false};
   problem.min_distance = d;
-  problem.density = world.density;
+  problem.density = world.density();
   problem.fixed_points = gathered.fixed;
   problem.inert_points = gathered.inert;
   problem.covered_rects = gathered.covered;
   problem.stop_when_covered = rect;
   problem.seed_area = Grown(Rect{centre.x, centre.y, centre.x, centre.y}, d / 2);
-  Rng rng(HashWords(
-      {WorldFingerprint(world), static_cast<uint64_t>(key.i), static_cast<uint64_t>(key.j)}));
+  Rng rng(
+      HashWords({world.fingerprint(), static_cast<uint64_t>(key.i), static_cast<uint64_t>(key.j)}));
   std::vector<Vec2> placed;
   std::vector<bool> placed_unprocessed;
-  switch (world.algorithm) {
-    case Algorithm::kA1:
+  switch (world.algorithm()) {
+    case WorldAlgorithm::kA1:
       placed = SampleScalloped(problem, CandidateChoice::kByArea, rng);
       break;
-    case Algorithm::kA2:
+    case WorldAlgorithm::kA2:
       placed = SampleScalloped(problem, CandidateChoice::kUniform, rng);
       break;
-    default:
+    case WorldAlgorithm::kA3:
       placed = SampleBoundary(problem, rng, &placed_unprocessed);
       break;
   }

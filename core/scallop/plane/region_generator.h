@@ -55,8 +55,8 @@ std::vector<RegionKey> LowerRankedNeighbours(RegionKey key);
 // (and spill) within reach of it (d for A3, r' for A1 and A2) constrain the
 // new ones and seed their neighbourhoods, and no new point lands in a
 // neighbour's rectangle. The region's random stream is
-// Rng(HashWords({WorldFingerprint(world), i, j})).
-// REQUIRES: ValidateWorld(world).ok(). Cost: O(points placed), about 220 for
+// Rng(HashWords({world.fingerprint(), i, j})).
+// Cost: O(points placed), about 220 for
 // A3 on average (a rank-0 region places more, a rank-3 region fewer).
 RegionPoints GenerateRegion(const World& world, RegionKey key,
                             std::span<const RegionPoints* const> lower_neighbours);

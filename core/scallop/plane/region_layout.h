@@ -7,6 +7,7 @@
 #include <compare>
 #include <cstdint>
 
+#include "scallop/base/precision_range.h"
 #include "scallop/geometry/rect.h"
 
 namespace scallop {
@@ -16,8 +17,9 @@ namespace scallop {
 // region lies within its 8 neighbours.
 inline constexpr double kRegionSideInD = 16.0;
 
-// The guarantees hold for |x|, |y| <= 2^32 d; queries beyond are rejected.
-inline constexpr double kPrecisionRangeInD = 0x1.0p32;
+// Regions -2^28 .. 2^28 - 1 on each axis tile exactly [-2^32 d, 2^32 d).
+inline constexpr auto kRegionsPerHalfAxis =
+    static_cast<int64_t>(kPrecisionRangeInD / kRegionSideInD);
 
 struct RegionKey {
   int64_t i = 0;

@@ -4,82 +4,32 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
-#include <tuple>
 
+#include "scallop/base/number_text.h"
 #include "scallop/plane/point_id.h"
+#include "scallop/plane/query_rect.h"
 
 namespace scallop {
-namespace {
-
-// "4e+06", "15641": shortest readable text, unlike std::to_string's six decimals.
-std::string Number(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
-// The lowest and highest region a valid half-open rectangle overlaps: it
-// ends just below x1 and y1.
-std::pair<RegionKey, RegionKey> RegionRange(const RegionLayout& layout, const Rect& rect) {
-  return {layout.RegionOf(rect.x0, rect.y0),
-          layout.RegionOf(std::nextafter(rect.x1, rect.x0), std::nextafter(rect.y1, rect.y0))};
-}
-
-}  // namespace
-
 Status ValidateViewportUpdate(const World& world, const ViewportUpdate& update, double max_area) {
-  const Rect& view = update.viewport;
-  const double limit = RegionLayout(world.min_distance).precision_limit();
-  const std::pair<const char*, double> corners[] = {{"viewport.x0", view.x0},
-                                                    {"viewport.y0", view.y0},
-                                                    {"viewport.x1", view.x1},
-                                                    {"viewport.y1", view.y1}};
-  for (const auto& [field, value] : corners) {
-    if (!std::isfinite(value)) return InvalidArgument(std::string(field) + ": must be finite");
-    if (std::abs(value) > limit) {
-      return OutOfRange(std::string(field) +
-                        ": |value| must be at most 2^32 * min_distance = " + Number(limit));
-    }
+  if (Status status = CheckRectBounds(world, update.viewport, "viewport"); !status.ok()) {
+    return status;
   }
-  if (!(view.x0 < view.x1)) return InvalidArgument("viewport: x0 must be less than x1");
-  if (!(view.y0 < view.y1)) return InvalidArgument("viewport: y0 must be less than y1");
   if (!std::isfinite(update.velocity.x)) return InvalidArgument("velocity_x: must be finite");
   if (!std::isfinite(update.velocity.y)) return InvalidArgument("velocity_y: must be finite");
   if (!(std::isfinite(update.keep_margin) && update.keep_margin >= 0)) {
     return InvalidArgument("keep_margin: must be finite and >= 0, got " +
-                           Number(update.keep_margin));
+                           NumberText(update.keep_margin));
   }
-  const double d = world.min_distance;
-  const Rect kept = Grown(view, update.keep_margin);
-  // An overflowing margin makes the area infinite, which fails here too.
-  const double area = kept.Width() / d * (kept.Height() / d);
-  if (!(area <= max_area)) {
-    return InvalidArgument("viewport grown by keep_margin: area is " + Number(area) +
-                           " min_distance^2, must be at most " + Number(max_area) +
-                           " (max_follow_area)");
-  }
-  // As for every rectangle query: a thin viewport of tiny area could
-  // otherwise cross millions of regions.
-  const auto [low, high] = RegionRange(RegionLayout(d), kept);
-  const double regions =
-      (static_cast<double>(high.i - low.i) + 1) * (static_cast<double>(high.j - low.j) + 1);
-  if (const double max_regions = max_area / 64 + 16; regions > max_regions) {
-    return InvalidArgument("viewport grown by keep_margin: crosses " + Number(regions) +
-                           " regions of 16 min_distance, at most " + Number(max_regions) +
-                           " (max_follow_area / 64 + 16)");
-  }
-  return Status::Ok();
+  // What the call keeps, and so reads, is the viewport grown by the margin.
+  return CheckQueryCost(world, Grown(update.viewport, update.keep_margin),
+                        {.max_area = max_area, .name = "max_follow_area"},
+                        "viewport grown by keep_margin");
 }
 
 std::vector<RegionKey> ViewportTracker::Update(const ViewportUpdate& update) {
-  std::tie(keep_low_, keep_high_) =
-      RegionRange(layout_, Grown(update.viewport, update.keep_margin));
-  auto kept = [&](RegionKey key) {
-    return keep_low_.i <= key.i && key.i <= keep_high_.i && keep_low_.j <= key.j &&
-           key.j <= keep_high_.j;
-  };
+  kept_ = RegionsOverlapping(layout_, Grown(update.viewport, update.keep_margin));
+  auto kept = [&](RegionKey key) { return kept_.Contains(key); };
   std::vector<RegionKey> evicted;
   for (auto it = sent_.begin(); it != sent_.end();) {
     if (kept(it->first)) {

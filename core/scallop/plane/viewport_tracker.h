@@ -13,6 +13,7 @@
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
 #include "scallop/plane/plane_engine.h"
+#include "scallop/plane/query_rect.h"
 #include "scallop/plane/region_layout.h"
 #include "scallop/plane/world.h"
 
@@ -36,10 +37,9 @@ struct ViewportUpdate {
 // unprefetched gap in between) and a wrong guess wastes one viewport of work.
 inline constexpr double kPrefetchSeconds = 1.0;
 
-// Checks an update of `world` (which must be valid) against max_area, in
-// units of d^2, for the viewport grown by keep_margin, and against the
-// regions that grown viewport crosses (at most max_area / 64 + 16, as for
-// the other rectangle queries). Errors name the field:
+// Checks an update of `world`: the viewport's bounds, then the viewport
+// grown by keep_margin against max_area d^2 and the regions it crosses (the
+// rectangle rule of query_rect.h, whose limits every query obeys). Errors name the field:
 // INVALID_ARGUMENT "viewport.x0: must be finite", "viewport: x0 must be less
 // than x1", "velocity_x: must be finite", "keep_margin: must be finite and
 // >= 0", "viewport grown by keep_margin: area is ... (max_follow_area)";
@@ -56,8 +56,7 @@ struct RegionChunk {
 // Not thread-safe: one tracker per follower, used by one update at a time.
 class ViewportTracker {
  public:
-  // REQUIRES: ValidateWorld(world).ok().
-  explicit ViewportTracker(const World& world) : world_(world), layout_(world.min_distance) {}
+  explicit ViewportTracker(const World& world) : world_(world), layout_(world.min_distance()) {}
 
   // Moves to `update`: every region held before and no longer kept (not
   // touching the viewport grown by keep_margin) is forgotten and returned,
@@ -89,7 +88,7 @@ class ViewportTracker {
 
   World world_;
   RegionLayout layout_;
-  RegionKey keep_low_, keep_high_;        // kept regions: keep_low_ <= key <= keep_high_
+  RegionRange kept_;                      // the regions kept
   std::map<RegionKey, SentPoints> sent_;  // ordered, so evictions come in a fixed order
 };
 

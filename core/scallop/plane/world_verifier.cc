@@ -13,21 +13,27 @@ double MaximalityTolerance(double min_distance, double max_abs) {
   return std::max(1e-9, 2 * margin);
 }
 
-StatusOr<VerifyReport> VerifyWorldRect(PlaneEngine& engine, const World& world, const Rect& rect) {
-  if (Status status = engine.ValidateQuery(world, rect); !status.ok()) return status;
-  const double halo = 2 * world.min_distance;
-  const Rect grown{rect.x0 - halo, rect.y0 - halo, rect.x1 + halo, rect.y1 + halo};
+StatusOr<VerifyReport> VerifyWorldRect(PlaneEngine& engine, const World& world, const Rect& rect,
+                                       const QueryLimit& limit, PlanePoints* inside) {
+  if (Status status = CheckRectBounds(world, rect, "rect"); !status.ok()) return status;
+  const Rect grown = Grown(rect, 2 * world.min_distance());
+  // Named "rect+halo" in messages: the rectangle verify reads.
+  if (Status status = CheckQueryRect(world, grown, limit, "rect+halo"); !status.ok()) return status;
   StatusOr<PlanePoints> points = engine.Points(world, grown);
-  if (!points.ok()) {
-    return Status(points.status().code(),
-                  points.status().message() + " (verify adds a halo of 2 * min_distance)");
+  if (!points.ok()) return points.status();
+  if (inside) {
+    for (size_t k = 0; k < points->positions.size(); ++k) {
+      if (!rect.Contains(points->positions[k])) continue;
+      inside->positions.push_back(points->positions[k]);
+      inside->ids.push_back(points->ids[k]);
+    }
   }
   VerifyOptions options;
-  options.seam_spacing = RegionLayout(world.min_distance).side();
-  const double max_abs = std::max({std::abs(grown.x0), std::abs(grown.x1), std::abs(grown.y0),
-                                   std::abs(grown.y1)});
-  options.max_tolerance = MaximalityTolerance(world.min_distance, max_abs);
-  return VerifyWindow(points->positions, rect, world.min_distance, options);
+  options.seam_spacing = RegionLayout(world.min_distance()).side();
+  const double max_abs =
+      std::max({std::abs(grown.x0), std::abs(grown.x1), std::abs(grown.y0), std::abs(grown.y1)});
+  options.max_tolerance = MaximalityTolerance(world.min_distance(), max_abs);
+  return VerifyWindow(points->positions, rect, world.min_distance(), options);
 }
 
 }  // namespace scallop

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "scallop/base/precision_range.h"
 #include "scallop/random/rng.h"
 #include "scallop/sampling/baseline_samplers.h"
 #include "scallop/sampling/boundary_sampler.h"
@@ -26,10 +27,6 @@ constexpr std::array<std::pair<Algorithm, std::string_view>, 6> kAlgorithmNames{
 // Hexagonal packing, the densest set with spacing d, has 2 / (sqrt(3) d^2)
 // points per unit area: no sampler can exceed it.
 constexpr double kDensestPointsPerUnitArea = 1.1547005383792515;
-
-// Coordinates up to 2^32 d keep a rounding error far below the spacing
-// margin (see spacing.h); the infinite plane promises the same range.
-constexpr double kPrecisionRangeInD = 0x1.0p32;
 
 }  // namespace
 
@@ -124,9 +121,8 @@ StatusOr<std::vector<Vec2>> Sample(const SamplerOptions& options) {
     case Algorithm::kA3:
       return SampleBoundary(problem, rng);
     case Algorithm::kDartThrowing:
-      return options.dart_exhaustive
-                 ? SampleExhaustiveDartThrowing(problem, rng)
-                 : SampleDartThrowing(problem, options.dart_failure_limit, rng);
+      return options.dart_exhaustive ? SampleExhaustiveDartThrowing(problem, rng)
+                                     : SampleDartThrowing(problem, options.dart_failure_limit, rng);
     case Algorithm::kBestCandidate:
       return SampleBestCandidate(problem, options.best_candidate_factor, rng);
     case Algorithm::kBridson:

@@ -17,7 +17,9 @@
 #include <string_view>
 #include <vector>
 
+#include "scallop/base/precision_range.h"
 #include "scallop/base/status.h"
+#include "scallop/geometry/domain.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
 
@@ -30,12 +32,6 @@ std::string_view AlgorithmName(Algorithm algorithm);
 StatusOr<Algorithm> ParseAlgorithm(std::string_view name);
 // True for the algorithms whose density the outer radius r' tunes (A1, A2).
 bool UsesDensity(Algorithm algorithm);
-
-// A rectangle, or the torus made by identifying its opposite edges.
-struct Domain {
-  Rect rect;
-  bool torus = false;
-};
 
 struct SamplerOptions {
   Algorithm algorithm = Algorithm::kA3;
@@ -56,22 +52,16 @@ struct SamplerOptions {
   int best_candidate_factor = 10;
 };
 
-// The minimum distances every part of Scallop supports: squares of
-// coordinates up to 2^40 d and differences down to 2^-60 d stay finite and
-// normal doubles, so the spacing tests mean what they say.
-inline constexpr double kSmallestMinDistance = 0x1.0p-256;
-inline constexpr double kLargestMinDistance = 0x1.0p256;
-
 // Largest point count a bounded sampler will produce (about 2 GiB of working
 // memory for A1); domains whose area would exceed it are rejected.
 inline constexpr double kMaxSamplerPoints = 64e6;
 
 // Checks every field and returns a status naming the first bad one:
 // INVALID_ARGUMENT for non-finite or inverted rectangles, d outside
-// [kSmallestMinDistance, kLargestMinDistance], density outside (1, 2] (A1, A2), a torus side shorter than
-// 8 d, an area that could hold more than kMaxSamplerPoints points, and
-// non-positive baseline parameters; OUT_OF_RANGE for a coordinate beyond
-// 2^32 d, where rounding would eat the spacing margin.
+// [kSmallestMinDistance, kLargestMinDistance], density outside (1, 2] (A1, A2), a torus side
+// shorter than 8 d, an area that could hold more than kMaxSamplerPoints points, and non-positive
+// baseline parameters; OUT_OF_RANGE for a coordinate beyond 2^32 d, where rounding would eat the
+// spacing margin.
 Status ValidateSamplerOptions(const SamplerOptions& options);
 
 // Validates, then samples. Pure: the same options give the same bits.

@@ -8,9 +8,9 @@
 #include <span>
 
 #include "scallop/base/status.h"
+#include "scallop/geometry/domain.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
-#include "scallop/sampling/sampler.h"
 
 namespace scallop {
 
