@@ -1,17 +1,17 @@
 // A simulated player walking 10,000 d at constant speed with a 64 d x 64 d
-// view, against an in-process scallopd on a loopback port, three ways in one
-// run: Follow with prefetch (velocity sent), Follow without (velocity 0), and
-// the baseline, naive re-querying of the whole view with GetPoints each step.
-// Each walk is on a fresh world, so every region starts cold.
+// view, against a real scallopd process on a loopback port (started as the
+// end-to-end tests start it), three ways in one run: Follow with prefetch
+// (velocity sent), Follow without (velocity 0), and the baseline, naive
+// re-querying of the whole view with GetPoints each step. Each walk is on a
+// fresh world, so every region starts cold.
 //
 //   build/bench/follow_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
-#include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <boost/asio/thread_pool.hpp>
 #include <chrono>
-#include <limits>
+#include <cstdlib>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -19,12 +19,10 @@
 #include <vector>
 
 #include "follow_client.h"
-#include "page_token.h"
+#include "scallop/plane/world.h"
 #include "scallop_client.h"
-#include "scallop_service.h"
-#include "server_config.h"
+#include "tests/e2e/scallopd_process.h"
 #include "world_messages.h"
-#include "world_registry.h"
 
 namespace scallop {
 namespace {
@@ -34,41 +32,6 @@ constexpr double kView = 64;                             // view side, in d
 constexpr double kStep = 4;                              // d moved per update
 constexpr auto kPace = std::chrono::microseconds(2000);  // one update every 2 ms
 constexpr double kSpeed = kStep / 0.002;                 // 2000 d/s
-
-// scallopd's parts, assembled as server/main.cc does, on 127.0.0.1:0.
-class InProcessServer {
- public:
-  InProcessServer()
-      : worlds_(config_.worlds, config_.default_world),
-        page_tokens_("follow-bench"),
-        engine_({.cache_bytes = config_.cache_megabytes << 20,
-                 .threads = config_.threads,
-                 .max_query_area = std::numeric_limits<double>::infinity()}),
-        pool_(static_cast<size_t>(config_.threads)),
-        service_(config_, worlds_, page_tokens_, engine_, pool_) {
-    grpc::ServerBuilder builder;
-    int port = 0;
-    builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port);
-    builder.RegisterService(&service_);
-    server_ = builder.BuildAndStart();
-    address_ = "127.0.0.1:" + std::to_string(port);
-  }
-  ~InProcessServer() {
-    server_->Shutdown();
-    pool_.join();
-  }
-  const std::string& address() const { return address_; }
-
- private:
-  server::ServerConfig config_;
-  server::WorldRegistry worlds_;
-  server::PageTokenCodec page_tokens_;
-  PlaneEngine engine_;
-  boost::asio::thread_pool pool_;
-  server::ScallopService service_;
-  std::unique_ptr<grpc::Server> server_;
-  std::string address_;
-};
 
 struct WalkResult {
   int64_t steps = 0, bytes = 0, messages = 0, points = 0;
@@ -133,8 +96,13 @@ WalkResult Walk(const std::string& address, Mode mode, const World& world, doubl
 }
 
 void BM_WalkFollowVsNaive(benchmark::State& state) {
-  spdlog::set_level(spdlog::level::err);  // no request log line per step
-  InProcessServer server;
+  // Its defaults, but no request log line per step.
+  const std::unique_ptr<testing::ScallopdProcess> server =
+      testing::ScallopdProcess::Start({"--log-level", "error"});
+  if (!server) {
+    std::cerr << "follow_bench: scallopd did not start\n";
+    std::exit(1);
+  }
   uint64_t seed = 100;
   for (auto _ : state) {
     const std::pair<const char*, Mode> modes[] = {{"prefetch", Mode::kFollowPrefetch},
@@ -143,7 +111,7 @@ void BM_WalkFollowVsNaive(benchmark::State& state) {
     double naive_bytes = 0, prefetch_bytes = 0;
     std::map<Mode, double> p99;
     for (const auto& [name, mode] : modes) {
-      WalkResult walk = Walk(server.address(), mode, *World::Create({.seed = ++seed}), 0);
+      WalkResult walk = Walk(server->address(), mode, *World::Create({.seed = ++seed}), 0);
       const std::string prefix = name;
       state.counters[prefix + "_bytes_per_s"] = static_cast<double>(walk.bytes) / walk.seconds;
       state.counters[prefix + "_msgs_per_s"] = static_cast<double>(walk.messages) / walk.seconds;
