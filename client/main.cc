@@ -4,7 +4,7 @@
 #include <iostream>
 #include <vector>
 
-#include "commands.h"
+#include "client/commands/commands.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"scallop: Poisson-disk points on an unbounded plane"};

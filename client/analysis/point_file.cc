@@ -1,5 +1,5 @@
 // Point files read back: CSV by lines, JSON through nlohmann-json.
-#include "analysis_point_file.h"
+#include "client/analysis/point_file.h"
 
 #include <cerrno>
 #include <cmath>

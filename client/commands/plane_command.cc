@@ -3,11 +3,11 @@
 #include <iostream>
 #include <memory>
 
-#include "commands.h"
-#include "format_options.h"
-#include "point_output.h"
+#include "client/commands/commands.h"
+#include "client/options/format_options.h"
+#include "client/options/world_options.h"
+#include "client/output/point_output.h"
 #include "scallop/plane/region_layout.h"
-#include "world_options.h"
 
 namespace scallop::cli {
 namespace {

@@ -1,4 +1,6 @@
-#include "png_image.h"
+// PNG files through libpng's simplified API, and the grey-level mapping the
+// renderers share (see png_image.h).
+#include "client/image/png_image.h"
 
 #include <png.h>
 

@@ -4,7 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "point_output.h"
+#include "client/output/point_output.h"
 
 namespace scallop::cli {
 

@@ -1,9 +1,9 @@
 // World options: registration with CLI11 and conversion to a checked World.
-#include "world_options.h"
+#include "client/options/world_options.h"
 
 #include <charconv>
 
-#include "rect_option.h"
+#include "client/options/rect_option.h"
 
 namespace scallop::cli {
 

@@ -5,10 +5,10 @@
 #include <iostream>
 #include <memory>
 
-#include "commands.h"
-#include "format_options.h"
-#include "point_output.h"
-#include "rect_option.h"
+#include "client/commands/commands.h"
+#include "client/options/format_options.h"
+#include "client/options/rect_option.h"
+#include "client/output/point_output.h"
 #include "scallop/analysis/point_statistics.h"
 #include "scallop/sampling/sampler.h"
 
@@ -50,7 +50,8 @@ int RunGenerate(const GenerateArguments& arguments) {
 
   const auto start = std::chrono::steady_clock::now();
   auto points = Sample(options);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!points.ok()) {
     std::cerr << "scallop generate: " << points.status().message() << '\n';
     return 2;
@@ -59,10 +60,11 @@ int RunGenerate(const GenerateArguments& arguments) {
               {.seam_spacing = 0.0, .dot_radius = options.min_distance / 2});
   if (arguments.stats) {
     const auto rho = NormalisedRadius(static_cast<int64_t>(points->size()),
-                                        options.domain.rect.Area(), options.min_distance);
+                                      options.domain.rect.Area(), options.min_distance);
     std::cerr << std::setprecision(6) << "algorithm " << AlgorithmName(options.algorithm)
-              << "\ncount " << points->size() << "\nrho " << (rho.ok() ? *rho : NAN) << "\nseconds " << seconds
-              << "\npoints_per_second " << static_cast<double>(points->size()) / seconds << '\n';
+              << "\ncount " << points->size() << "\nrho " << (rho.ok() ? *rho : NAN) << "\nseconds "
+              << seconds << "\npoints_per_second " << static_cast<double>(points->size()) / seconds
+              << '\n';
   }
   return 0;
 }
@@ -72,10 +74,12 @@ int RunGenerate(const GenerateArguments& arguments) {
 CommandRunner RegisterGenerate(CLI::App& app) {
   auto arguments = std::make_shared<GenerateArguments>();
   CLI::App* command = app.add_subcommand("generate", "Sample a bounded domain with one algorithm");
-  command->add_option("--algorithm", arguments->algorithm,
-                      "a1, a2, a3, dart, best-candidate or bridson")
+  command
+      ->add_option("--algorithm", arguments->algorithm,
+                   "a1, a2, a3, dart, best-candidate or bridson")
       ->capture_default_str();
-  command->add_option("--min-distance", arguments->min_distance, "Minimum distance d between points")
+  command
+      ->add_option("--min-distance", arguments->min_distance, "Minimum distance d between points")
       ->capture_default_str();
   command->add_option("--domain", arguments->domain, "Rectangle X0,Y0,X1,Y1 (half-open)")
       ->capture_default_str();
@@ -86,8 +90,9 @@ CommandRunner RegisterGenerate(CLI::App& app) {
   AddFormatOption(*command, arguments->format);
   command->add_flag("--stats", arguments->stats,
                     "Print count, rho, seconds and points per second to stderr");
-  command->add_option("--dart-failure-limit", arguments->dart_failure_limit,
-                      "dart: stop after this many misses in a row")
+  command
+      ->add_option("--dart-failure-limit", arguments->dart_failure_limit,
+                   "dart: stop after this many misses in a row")
       ->capture_default_str();
   command->add_flag("--dart-exhaustive", arguments->dart_exhaustive,
                     "dart: run until no spot is left (maximal)");

@@ -1,5 +1,5 @@
 // CSV, JSON and SVG output of a point set.
-#include "point_output.h"
+#include "client/output/point_output.h"
 
 #include <cmath>
 #include <iomanip>
@@ -33,30 +33,29 @@ void WriteSvg(std::ostream& out, std::span<const Vec2> points, const Rect& view,
   // y grows upwards in the world and downwards in SVG: flip with a transform.
   const double stroke = std::max(view.Width(), view.Height()) / 1000.0;
   out << std::setprecision(9);
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" << view.x0 << ' ' << -view.y1
-      << ' ' << view.Width() << ' ' << view.Height() << "\" width=\"800\" height=\""
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" << view.x0 << ' ' << -view.y1 << ' '
+      << view.Width() << ' ' << view.Height() << "\" width=\"800\" height=\""
       << 800.0 * view.Height() / view.Width() << "\">\n"
       << "<rect x=\"" << view.x0 << "\" y=\"" << -view.y1 << "\" width=\"" << view.Width()
       << "\" height=\"" << view.Height() << "\" fill=\"white\"/>\n"
       << "<g transform=\"scale(1,-1)\">\n";
   if (style.seam_spacing > 0) {
-    out << "<g stroke=\"#c33\" stroke-width=\"" << stroke << "\" stroke-dasharray=\""
-        << 4 * stroke << "\">\n";
+    out << "<g stroke=\"#c33\" stroke-width=\"" << stroke << "\" stroke-dasharray=\"" << 4 * stroke
+        << "\">\n";
     const double s = style.seam_spacing;
     for (double x = std::ceil(view.x0 / s) * s; x <= view.x1; x += s) {
-      out << "<line x1=\"" << x << "\" y1=\"" << view.y0 << "\" x2=\"" << x << "\" y2=\""
-          << view.y1 << "\"/>\n";
+      out << "<line x1=\"" << x << "\" y1=\"" << view.y0 << "\" x2=\"" << x << "\" y2=\"" << view.y1
+          << "\"/>\n";
     }
     for (double y = std::ceil(view.y0 / s) * s; y <= view.y1; y += s) {
-      out << "<line x1=\"" << view.x0 << "\" y1=\"" << y << "\" x2=\"" << view.x1 << "\" y2=\""
-          << y << "\"/>\n";
+      out << "<line x1=\"" << view.x0 << "\" y1=\"" << y << "\" x2=\"" << view.x1 << "\" y2=\"" << y
+          << "\"/>\n";
     }
     out << "</g>\n";
   }
   out << "<g fill=\"#234\">\n";
   for (const Vec2& p : points) {
-    out << "<circle cx=\"" << p.x << "\" cy=\"" << p.y << "\" r=\"" << style.dot_radius
-        << "\"/>\n";
+    out << "<circle cx=\"" << p.x << "\" cy=\"" << p.y << "\" r=\"" << style.dot_radius << "\"/>\n";
   }
   out << "</g>\n</g>\n</svg>\n";
 }
@@ -64,11 +63,10 @@ void WriteSvg(std::ostream& out, std::span<const Vec2> points, const Rect& view,
 }  // namespace
 
 const std::vector<std::pair<std::string, PointFormat>>& PointFormatNames() {
-  static const std::vector<std::pair<std::string, PointFormat>> names{
-      {"csv", PointFormat::kCsv},
-      {"json", PointFormat::kJson},
-      {"svg", PointFormat::kSvg},
-      {"none", PointFormat::kNone}};
+  static const std::vector<std::pair<std::string, PointFormat>> names{{"csv", PointFormat::kCsv},
+                                                                      {"json", PointFormat::kJson},
+                                                                      {"svg", PointFormat::kSvg},
+                                                                      {"none", PointFormat::kNone}};
   return names;
 }
 

@@ -7,13 +7,13 @@
 #include <memory>
 #include <string>
 
-#include "commands.h"
-#include "png_image.h"
-#include "rect_option.h"
-#include "remote_options.h"
+#include "client/commands/commands.h"
+#include "client/image/png_image.h"
+#include "client/options/rect_option.h"
+#include "client/options/remote_options.h"
+#include "client/options/world_options.h"
 #include "scallop/noise/noise_grid.h"
 #include "scallop/random/rng.h"
-#include "world_options.h"
 
 namespace scallop::cli {
 namespace {

@@ -1,5 +1,5 @@
 // Tone mapping and layout of periodogram pictures (see the header).
-#include "analysis_periodogram_image.h"
+#include "client/analysis/periodogram_image.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "commands.h"
+#include "client/commands/commands.h"
+#include "client/options/rect_option.h"
+#include "client/options/remote_options.h"
 #include "follow_client.h"
-#include "rect_option.h"
-#include "remote_options.h"
 
 namespace scallop::cli {
 namespace {

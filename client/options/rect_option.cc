@@ -1,5 +1,5 @@
 // Rectangle option parsing, strict: no clamping, no swapped corners.
-#include "rect_option.h"
+#include "client/options/rect_option.h"
 
 #include <cmath>
 #include <cstdlib>

@@ -1,5 +1,5 @@
 // Registration of the remote options and the common failure report.
-#include "remote_options.h"
+#include "client/options/remote_options.h"
 
 #include <iostream>
 

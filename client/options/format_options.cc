@@ -1,5 +1,5 @@
 // --format and --seams registration.
-#include "format_options.h"
+#include "client/options/format_options.h"
 
 #include <map>
 #include <string>

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "commands.h"
-#include "remote_options.h"
+#include "client/commands/commands.h"
+#include "client/options/remote_options.h"
+#include "client/options/world_options.h"
 #include "scallop/noise/nearest_lookup.h"
-#include "world_options.h"
 
 namespace scallop::cli {
 namespace {

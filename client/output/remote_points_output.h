@@ -5,7 +5,7 @@
 
 #include <ostream>
 
-#include "point_output.h"
+#include "client/output/point_output.h"
 #include "scallop/plane/plane_engine.h"
 #include "scallop_client.h"
 

@@ -5,10 +5,10 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "client/options/world_options.h"
 #include "scallop/v1/scallop.pb.h"
 #include "scallop_client.h"
 #include "world_messages.h"
-#include "world_options.h"
 
 namespace scallop::cli {
 

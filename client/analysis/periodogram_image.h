@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "png_image.h"
+#include "client/image/png_image.h"
 #include "scallop/analysis/periodogram.h"
 
 namespace scallop::cli {

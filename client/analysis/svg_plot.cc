@@ -1,6 +1,6 @@
-// SVG line plots (see analysis_svg_plot.h): nice tick steps, a flipped y axis
+// SVG line plots (see svg_plot.h): nice tick steps, a flipped y axis
 // per panel, and a polyline per run of finite values.
-#include "analysis_svg_plot.h"
+#include "client/analysis/svg_plot.h"
 
 #include <algorithm>
 #include <cmath>

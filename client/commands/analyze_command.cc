@@ -9,10 +9,10 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "analysis_periodogram_image.h"
-#include "analysis_series.h"
-#include "analysis_svg_plot.h"
-#include "commands.h"
+#include "client/analysis/periodogram_image.h"
+#include "client/analysis/series.h"
+#include "client/analysis/svg_plot.h"
+#include "client/commands/commands.h"
 
 namespace scallop::cli {
 namespace {

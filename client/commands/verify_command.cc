@@ -9,10 +9,10 @@
 #include <sstream>
 #include <string>
 
-#include "commands.h"
-#include "remote_options.h"
+#include "client/commands/commands.h"
+#include "client/options/remote_options.h"
+#include "client/options/world_options.h"
 #include "scallop/plane/world_verifier.h"
-#include "world_options.h"
 
 namespace scallop::cli {
 namespace {

@@ -3,10 +3,10 @@
 #include <iostream>
 #include <memory>
 
-#include "commands.h"
-#include "format_options.h"
-#include "remote_options.h"
-#include "remote_points_output.h"
+#include "client/commands/commands.h"
+#include "client/options/format_options.h"
+#include "client/options/remote_options.h"
+#include "client/output/remote_points_output.h"
 
 namespace scallop::cli {
 namespace {

@@ -1,4 +1,7 @@
-#include "analysis_series.h"
+// The series `scallop analyze` compares, planned from its options (see
+// series.h); a world's sets come from the core's VerifyWorldRect, which reads
+// the window with the verifier's halo and returns the window's points.
+#include "client/analysis/series.h"
 
 #include <charconv>
 #include <cmath>
@@ -9,8 +12,9 @@
 #include <limits>
 #include <memory>
 
-#include "analysis_point_file.h"
-#include "rect_option.h"
+#include "client/analysis/point_file.h"
+#include "client/options/rect_option.h"
+#include "client/options/world_options.h"
 #include "scallop/analysis/periodogram.h"
 #include "scallop/analysis/point_statistics.h"
 #include "scallop/analysis/radial_spectrum.h"
@@ -19,7 +23,6 @@
 #include "scallop/plane/world_verifier.h"
 #include "scallop/sampling/sampler.h"
 #include "scallop/verify/delaunay_verifier.h"
-#include "world_options.h"
 
 namespace scallop::cli {
 namespace {

@@ -5,8 +5,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "commands.h"
-#include "remote_options.h"
+#include "client/commands/commands.h"
+#include "client/options/remote_options.h"
 
 namespace scallop::cli {
 namespace {

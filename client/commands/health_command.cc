@@ -4,7 +4,7 @@
 #include <iostream>
 #include <memory>
 
-#include "commands.h"
+#include "client/commands/commands.h"
 #include "scallop_client.h"
 
 namespace scallop::cli {
