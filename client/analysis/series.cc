@@ -3,7 +3,6 @@
 // the window with the verifier's halo and returns the window's points.
 #include "client/analysis/series.h"
 
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -29,21 +28,11 @@ namespace {
 
 // Bounds that keep a typo from running for days; the docs' figures use 100.
 constexpr int kMaxSets = 100000;
-constexpr int kMaxThreads = 256;
 // What one set of a world series may read: its window and the verifier's halo.
 constexpr QueryLimit kWorldAnalysisLimit{.max_area = 1e8, .name = "scallop analyze's limit"};
 // Default frequency range: 2.5 cycles per d shows the low-energy annulus, the
 // peak near 1 / d and the flat tail beyond it.
 constexpr double kDefaultCyclesPerD = 2.5;
-
-StatusOr<uint64_t> ParseSeed(const std::string& text) {
-  uint64_t value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
-    return InvalidArgument("--seed: must be an integer in 0..2^64-1, got '" + text + "'");
-  }
-  return value;
-}
 
 Status RequireSquare(const Rect& window, const std::string& option) {
   const double width = window.Width(), height = window.Height();
@@ -96,7 +85,7 @@ StatusOr<std::vector<SeriesPlan>> PlanFiles(const AnalyzeArguments& arguments) {
     plan.name += " and " + std::to_string(arguments.inputs.size() - 1) + " more";
   }
   if (arguments.rects.empty()) {
-    plan.window = BoundingSquare(*files, arguments.min_distance);
+    plan.window = BoundingSquare(*files, arguments.world.min_distance);
   } else {
     StatusOr<Rect> window = ParseRect(arguments.rects.front(), "--rect");
     if (!window.ok()) return window.status();
@@ -105,7 +94,7 @@ StatusOr<std::vector<SeriesPlan>> PlanFiles(const AnalyzeArguments& arguments) {
   }
   plan.sets = static_cast<int>(files->size());
   const Rect window = plan.window;
-  const double d = arguments.min_distance;
+  const double d = arguments.world.min_distance;
   plan.make = [files, window, d](int set) -> StatusOr<AnalysedSet> {
     AnalysedSet result;
     for (const Vec2& p : (*files)[set]) {
@@ -128,7 +117,7 @@ StatusOr<std::vector<SeriesPlan>> PlanSamplers(const AnalyzeArguments& arguments
   StatusOr<Rect> domain = ParseRect(arguments.domain, "--domain");
   if (!domain.ok()) return domain.status();
   if (Status status = RequireSquare(*domain, "--domain"); !status.ok()) return status;
-  StatusOr<uint64_t> seed = ParseSeed(arguments.seed);
+  StatusOr<uint64_t> seed = ParseSeed(arguments.world.seed);
   if (!seed.ok()) return seed.status();
   std::vector<SeriesPlan> plans;
   for (const std::string& name : arguments.algorithms) {
@@ -137,8 +126,8 @@ StatusOr<std::vector<SeriesPlan>> PlanSamplers(const AnalyzeArguments& arguments
     SamplerOptions options;
     options.algorithm = *algorithm;
     options.domain = {*domain, arguments.torus};
-    options.min_distance = arguments.min_distance;
-    options.density = arguments.density;
+    options.min_distance = arguments.world.min_distance;
+    options.density = arguments.world.density;
     options.dart_exhaustive = arguments.dart_exhaustive;
     if (Status status = ValidateSamplerOptions(options); !status.ok()) return status;
     SeriesPlan plan;
@@ -166,17 +155,13 @@ StatusOr<std::vector<SeriesPlan>> PlanSamplers(const AnalyzeArguments& arguments
 
 StatusOr<std::vector<SeriesPlan>> PlanWorlds(const AnalyzeArguments& arguments) {
   if (arguments.torus) return InvalidArgument("--torus: only with --domain");
-  if (arguments.threads < 1 || arguments.threads > kMaxThreads) {
-    return InvalidArgument("--threads: must be in 1.." + std::to_string(kMaxThreads));
-  }
-  auto engine = std::make_shared<PlaneEngine>(PlaneEngineOptions{.threads = arguments.threads});
+  StatusOr<PlaneEngineOptions> engine_options = ParseEngineOptions(arguments.world);
+  if (!engine_options.ok()) return engine_options.status();
+  auto engine = std::make_shared<PlaneEngine>(*engine_options);
   std::vector<SeriesPlan> plans;
   for (const std::string& algorithm : arguments.algorithms) {
-    WorldArguments world_arguments;
-    world_arguments.seed = arguments.seed;
-    world_arguments.min_distance = arguments.min_distance;
+    WorldArguments world_arguments = arguments.world;
     world_arguments.algorithm = algorithm;
-    world_arguments.density = arguments.density;
     StatusOr<World> world = ParseWorld(world_arguments);
     if (!world.ok()) return world.status();
     for (const std::string& text : arguments.rects) {
@@ -218,7 +203,7 @@ StatusOr<std::vector<SeriesPlan>> PlanSeries(const AnalyzeArguments& arguments) 
     return InvalidArgument("--sets: must be in 1.." + std::to_string(kMaxSets) + ", got " +
                            std::to_string(arguments.sets));
   }
-  if (!std::isfinite(arguments.min_distance) || !(arguments.min_distance > 0)) {
+  if (!std::isfinite(arguments.world.min_distance) || !(arguments.world.min_distance > 0)) {
     return InvalidArgument("--min-distance: must be finite and > 0");
   }
   if (arguments.max_frequency != 0 &&
@@ -252,9 +237,9 @@ StatusOr<SeriesResult> Analyse(const SeriesPlan& plan, const AnalyzeArguments& a
   const double side = plan.window.Width();
   result.max_frequency = arguments.max_frequency != 0
                              ? arguments.max_frequency
-                             : static_cast<int>(std::clamp(
-                                   std::ceil(kDefaultCyclesPerD * side / arguments.min_distance),
-                                   1.0, double{kMaxPeriodogramFrequency}));
+                             : static_cast<int>(std::clamp(std::ceil(kDefaultCyclesPerD * side /
+                                                                     arguments.world.min_distance),
+                                                           1.0, double{kMaxPeriodogramFrequency}));
   PeriodogramAverage average;
   for (int set = 0; set < plan.sets; ++set) {
     StatusOr<AnalysedSet> points = plan.make(set);
@@ -264,7 +249,8 @@ StatusOr<SeriesResult> Analyse(const SeriesPlan& plan, const AnalyzeArguments& a
     if (!periodogram.ok()) return periodogram.status();
     if (Status status = average.Add(*periodogram); !status.ok()) return status;
     const auto count = static_cast<int64_t>(points->inside.size());
-    StatusOr<double> rho = NormalisedRadius(count, plan.window.Area(), arguments.min_distance);
+    StatusOr<double> rho =
+        NormalisedRadius(count, plan.window.Area(), arguments.world.min_distance);
     if (!rho.ok()) return rho.status();
     result.points += count;
     result.outside += points->outside;

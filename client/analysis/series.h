@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "client/options/world_options.h"
 #include "scallop/analysis/periodogram.h"
 #include "scallop/analysis/radial_spectrum.h"
 #include "scallop/base/status.h"
@@ -24,10 +25,10 @@ struct AnalyzeArguments {
   std::vector<std::string> rects;
   std::vector<std::string> algorithms{"a3"};
   std::vector<std::string> labels;
-  std::string seed = "1";
-  double min_distance = 1.0;
-  double density = 2.0;
-  int threads = 2;
+  // --seed, --min-distance, --density and --threads, as every command that
+  // names a world takes them; a world series sets `algorithm` from
+  // `algorithms`, and `rect` is unused (--rect may be given several times).
+  WorldArguments world;
   int sets = 1;
   int max_frequency = 0;  // 0: the default range
   bool dart_exhaustive = false;

@@ -167,7 +167,7 @@ int RunAnalyze(const AnalyzeArguments& arguments) {
     }
     results.push_back(std::move(*result));
   }
-  const double d = arguments.min_distance;
+  const double d = arguments.world.min_distance;
   if (!arguments.png.empty()) {
     std::vector<Periodogram> periodograms;
     for (const SeriesResult& result : results) periodograms.push_back(result.periodogram);
@@ -217,13 +217,15 @@ CommandRunner RegisterAnalyze(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--label", arguments->labels, "Series names, one per series, in order")
       ->delimiter(',');
-  command->add_option("--seed", arguments->seed, "First seed; set s uses seed + s")
+  command->add_option("--seed", arguments->world.seed, "First seed; set s uses seed + s")
       ->capture_default_str();
-  command->add_option("--min-distance", arguments->min_distance, "Minimum distance d")
+  command->add_option("--min-distance", arguments->world.min_distance, "Minimum distance d")
       ->capture_default_str();
-  command->add_option("--density", arguments->density, "r'/2r in (1, 2] for a1 and a2")
+  command->add_option("--density", arguments->world.density, "r'/2r in (1, 2] for a1 and a2")
       ->capture_default_str();
-  command->add_option("--threads", arguments->threads, "World source: threads generating regions")
+  command
+      ->add_option("--threads", arguments->world.threads,
+                   "World source: threads generating regions")
       ->capture_default_str();
   command->add_option("--sets", arguments->sets, "Sets (seeds) averaged per series")
       ->capture_default_str();

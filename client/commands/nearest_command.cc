@@ -18,9 +18,6 @@
 namespace scallop::cli {
 namespace {
 
-// As world_options.cc: a bound so that a typo cannot start a million threads.
-constexpr int kMaxThreads = 256;
-
 struct NearestArguments {
   WorldArguments world;
   RemoteArguments remote;  // with --server, scallopd answers instead
@@ -80,12 +77,12 @@ int RunLocal(const NearestArguments& arguments, const std::vector<Vec2>& positio
     std::cerr << "scallop nearest: " << world.status().message() << '\n';
     return 2;
   }
-  if (arguments.world.threads < 1 || arguments.world.threads > kMaxThreads) {
-    std::cerr << "scallop nearest: --threads: must be in 1.." << kMaxThreads << ", got "
-              << arguments.world.threads << '\n';
+  StatusOr<PlaneEngineOptions> engine_options = ParseEngineOptions(arguments.world);
+  if (!engine_options.ok()) {
+    std::cerr << "scallop nearest: " << engine_options.status().message() << '\n';
     return 2;
   }
-  PlaneEngine engine({.threads = arguments.world.threads});
+  PlaneEngine engine(*engine_options);
   NearestLookup lookup(engine);
   // Positions are numbered in input order, skipped lines aside.
   if (Status status = lookup.Nearest(*world, positions, results); !status.ok()) {

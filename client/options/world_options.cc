@@ -1,4 +1,5 @@
-// World options: registration with CLI11 and conversion to a checked World.
+// World options: registration with CLI11, and conversion to a checked World,
+// seed and engine.
 #include "client/options/world_options.h"
 
 #include <charconv>
@@ -35,27 +36,40 @@ StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments) {
   StatusOr<Rect> rect = ParseRect(arguments.rect, "--rect");
   if (!rect.ok()) return rect.status();
   query.rect = *rect;
-  if (arguments.threads < 1 || arguments.threads > kMaxThreads) {
-    return InvalidArgument("--threads: must be in 1.." + std::to_string(kMaxThreads) + ", got " +
-                           std::to_string(arguments.threads));
-  }
-  query.engine.threads = arguments.threads;
+  StatusOr<PlaneEngineOptions> engine = ParseEngineOptions(arguments);
+  if (!engine.ok()) return engine.status();
+  query.engine = *engine;
   return query;
 }
 
 StatusOr<World> ParseWorld(const WorldArguments& arguments) {
-  const std::string& seed = arguments.seed;
-  uint64_t seed_value = 0;
-  const auto [end, error] = std::from_chars(seed.data(), seed.data() + seed.size(), seed_value);
-  if (seed.empty() || error != std::errc() || end != seed.data() + seed.size()) {
-    return InvalidArgument("--seed: must be an integer in 0..2^64-1, got '" + seed + "'");
-  }
+  StatusOr<uint64_t> seed = ParseSeed(arguments.seed);
+  if (!seed.ok()) return seed.status();
   StatusOr<WorldAlgorithm> algorithm = ParseWorldAlgorithm(arguments.algorithm);
   if (!algorithm.ok()) return algorithm.status();
-  return World::Create({.seed = seed_value,
+  return World::Create({.seed = *seed,
                         .min_distance = arguments.min_distance,
                         .algorithm = *algorithm,
                         .density = arguments.density});
+}
+
+StatusOr<uint64_t> ParseSeed(const std::string& text) {
+  uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
+    return InvalidArgument("--seed: must be an integer in 0..2^64-1, got '" + text + "'");
+  }
+  return value;
+}
+
+StatusOr<PlaneEngineOptions> ParseEngineOptions(const WorldArguments& arguments) {
+  if (arguments.threads < 1 || arguments.threads > kMaxThreads) {
+    return InvalidArgument("--threads: must be in 1.." + std::to_string(kMaxThreads) + ", got " +
+                           std::to_string(arguments.threads));
+  }
+  PlaneEngineOptions engine;
+  engine.threads = arguments.threads;
+  return engine;
 }
 
 }  // namespace scallop::cli

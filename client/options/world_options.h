@@ -35,13 +35,22 @@ struct WorldQuery {
   PlaneEngineOptions engine;
 };
 
-// Parses --seed, --algorithm and --rect and checks --threads and the world
+// Parses the world (ParseWorld), --rect and --threads (ParseEngineOptions)
 // (World::Create). The rectangle's range and area are left to the rectangle
 // rule (CheckQueryRect), which every query runs first with the command's
 // limit. Errors name the option or the world field.
 StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments);
 
-// The world alone (--seed, --min-distance, --algorithm, --density), checked.
+// The world alone (--seed, --min-distance, --algorithm, --density), checked:
+// the one way the CLI turns typed options into a World.
 StatusOr<World> ParseWorld(const WorldArguments& arguments);
+
+// --seed as typed: all of the text an integer in 0..2^64-1, else an error
+// naming --seed and the text.
+StatusOr<uint64_t> ParseSeed(const std::string& text);
+
+// The engine --threads asks for, checked (1..256); every command that runs an
+// engine locally takes its threads from here.
+StatusOr<PlaneEngineOptions> ParseEngineOptions(const WorldArguments& arguments);
 
 }  // namespace scallop::cli
