@@ -12,6 +12,7 @@
 #include "client/analysis/periodogram_image.h"
 #include "client/analysis/series.h"
 #include "client/analysis/svg_plot.h"
+#include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
 
 namespace scallop::cli {
@@ -148,22 +149,19 @@ Status WritePlot(const std::string& path, const std::vector<SeriesResult>& resul
 
 int RunAnalyze(const AnalyzeArguments& arguments) {
   StatusOr<std::vector<SeriesPlan>> plans = PlanSeries(arguments);
-  if (!plans.ok()) {
-    std::cerr << "scallop analyze: " << plans.status().message() << '\n';
-    return 2;
-  }
+  if (!plans.ok()) return ReportBadArguments("analyze", plans.status());
   if (!arguments.plot.empty() &&
       (arguments.plot.size() < 4 || arguments.plot.substr(arguments.plot.size() - 4) != ".svg")) {
-    std::cerr << "scallop analyze: --plot: writes SVG, give a path ending in .svg\n";
-    return 2;
+    return ReportBadArguments("analyze",
+                              InvalidArgument("--plot: writes SVG, give a path ending in .svg"));
   }
   std::vector<SeriesResult> results;
   for (const SeriesPlan& plan : *plans) {
     StatusOr<SeriesResult> result = Analyse(plan, arguments);
     if (!result.ok()) {
       // Bad values surface here only through the core's checks of the input.
-      std::cerr << "scallop analyze: " << plan.name << ": " << result.status().message() << '\n';
-      return 2;
+      return ReportBadArguments("analyze",
+                                InvalidArgument(plan.name + ": " + result.status().message()));
     }
     results.push_back(std::move(*result));
   }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
 #include "client/options/rect_option.h"
 #include "client/options/remote_options.h"
@@ -44,14 +45,10 @@ StatusOr<std::vector<Rect>> ReadPath(const std::string& file) {
 int RunFollow(const FollowArguments& arguments) {
   v1::FollowRequest first;
   if (Status status = SetRequestWorld(arguments.remote, arguments.world, first); !status.ok()) {
-    std::cerr << "scallop follow: " << status.message() << '\n';
-    return 2;
+    return ReportBadArguments("follow", status);
   }
   StatusOr<std::vector<Rect>> path = ReadPath(arguments.path);
-  if (!path.ok()) {
-    std::cerr << "scallop follow: " << path.status().message() << '\n';
-    return 2;
-  }
+  if (!path.ok()) return ReportBadArguments("follow", path.status());
   const client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
   client::FollowSession session(client, CallOptionsFor(arguments.remote));
   std::cout << std::setprecision(17) << "id,x,y\n";

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 
+#include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
 #include "client/options/format_options.h"
 #include "client/options/rect_option.h"
@@ -31,15 +32,9 @@ struct GenerateArguments {
 int RunGenerate(const GenerateArguments& arguments) {
   SamplerOptions options;
   auto algorithm = ParseAlgorithm(arguments.algorithm);
-  if (!algorithm.ok()) {
-    std::cerr << "scallop generate: " << algorithm.status().message() << '\n';
-    return 2;
-  }
+  if (!algorithm.ok()) return ReportBadArguments("generate", algorithm.status());
   auto domain = ParseRect(arguments.domain, "--domain");
-  if (!domain.ok()) {
-    std::cerr << "scallop generate: " << domain.status().message() << '\n';
-    return 2;
-  }
+  if (!domain.ok()) return ReportBadArguments("generate", domain.status());
   options.algorithm = *algorithm;
   options.domain = {*domain, arguments.torus};
   options.min_distance = arguments.min_distance;
@@ -52,10 +47,7 @@ int RunGenerate(const GenerateArguments& arguments) {
   auto points = Sample(options);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!points.ok()) {
-    std::cerr << "scallop generate: " << points.status().message() << '\n';
-    return 2;
-  }
+  if (!points.ok()) return ReportBadArguments("generate", points.status());
   WritePoints(std::cout, arguments.format, *points, {}, options.domain.rect,
               {.seam_spacing = 0.0, .dot_radius = options.min_distance / 2});
   if (arguments.stats) {

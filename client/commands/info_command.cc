@@ -5,6 +5,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
 #include "client/options/remote_options.h"
 
@@ -23,8 +24,7 @@ int RunInfo(const InfoArguments& arguments) {
   if (!arguments.remote.world_name.empty() || arguments.inline_world) {
     if (Status status = SetRequestWorld(arguments.remote, arguments.world, describe);
         !status.ok()) {
-      std::cerr << "scallop info: " << status.message() << '\n';
-      return 2;
+      return ReportBadArguments("info", status);
     }
   }
   client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);

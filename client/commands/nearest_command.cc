@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
 #include "client/options/remote_options.h"
 #include "client/options/world_options.h"
@@ -73,21 +74,14 @@ void WriteCsv(std::ostream& out, const std::vector<Vec2>& positions,
 int RunLocal(const NearestArguments& arguments, const std::vector<Vec2>& positions,
              std::vector<NearestPoint>& results) {
   StatusOr<World> world = ParseWorld(arguments.world);
-  if (!world.ok()) {
-    std::cerr << "scallop nearest: " << world.status().message() << '\n';
-    return 2;
-  }
+  if (!world.ok()) return ReportBadArguments("nearest", world.status());
   StatusOr<PlaneEngineOptions> engine_options = ParseEngineOptions(arguments.world);
-  if (!engine_options.ok()) {
-    std::cerr << "scallop nearest: " << engine_options.status().message() << '\n';
-    return 2;
-  }
+  if (!engine_options.ok()) return ReportBadArguments("nearest", engine_options.status());
   PlaneEngine engine(*engine_options);
   NearestLookup lookup(engine);
   // Positions are numbered in input order, skipped lines aside.
   if (Status status = lookup.Nearest(*world, positions, results); !status.ok()) {
-    std::cerr << "scallop nearest: " << status.message() << '\n';
-    return 2;
+    return ReportBadArguments("nearest", status);
   }
   return 0;
 }
@@ -96,8 +90,7 @@ int RunRemote(const NearestArguments& arguments, const std::vector<Vec2>& positi
               std::vector<NearestPoint>& results) {
   v1::NearestRequest request;
   if (Status status = SetRequestWorld(arguments.remote, arguments.world, request); !status.ok()) {
-    std::cerr << "scallop nearest: " << status.message() << '\n';
-    return 2;
+    return ReportBadArguments("nearest", status);
   }
   client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
   const client::CallOptions options = CallOptionsFor(arguments.remote);
@@ -148,15 +141,12 @@ int RunNearest(const NearestArguments& arguments) {
   } else {
     std::ifstream file(arguments.input);
     if (!file) {
-      std::cerr << "scallop nearest: --input: cannot open '" << arguments.input << "'\n";
-      return 2;
+      return ReportBadArguments("nearest",
+                                InvalidArgument("--input: cannot open '" + arguments.input + "'"));
     }
     positions = ReadPositions(file);
   }
-  if (!positions.ok()) {
-    std::cerr << "scallop nearest: " << positions.status().message() << '\n';
-    return 2;
-  }
+  if (!positions.ok()) return ReportBadArguments("nearest", positions.status());
   std::vector<NearestPoint> results(positions->size());
   const int code = arguments.remote.server.empty() ? RunLocal(arguments, *positions, results)
                                                    : RunRemote(arguments, *positions, results);

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
 #include "client/image/png_image.h"
 #include "client/options/rect_option.h"
@@ -104,31 +105,26 @@ v1::NoiseChannel ChannelToMessage(NoiseChannel channel) {
   return v1::NOISE_CHANNEL_UNSPECIFIED;
 }
 
-int Fail(const std::string& message) {
-  std::cerr << "scallop noise: " << message << '\n';
-  return 2;
-}
-
 int RunNoise(const NoiseArguments& arguments) {
   StatusOr<Rect> rect = ParseRect(arguments.world.rect, "--rect");
-  if (!rect.ok()) return Fail(rect.status().message());
+  if (!rect.ok()) return ReportBadArguments("noise", rect.status());
   StatusOr<NoiseGridSpec> spec = ParseSpec(arguments, *rect);
-  if (!spec.ok()) return Fail(spec.status().message());
+  if (!spec.ok()) return ReportBadArguments("noise", spec.status());
 
   NoiseImage noise;
   double d = arguments.world.min_distance;
   if (arguments.remote.server.empty()) {
     StatusOr<WorldQuery> query = ParseWorldQuery(arguments.world);
-    if (!query.ok()) return Fail(query.status().message());
+    if (!query.ok()) return ReportBadArguments("noise", query.status());
     PlaneEngine engine(query->engine);
     NearestLookup lookup(engine);
     StatusOr<NoiseImage> image = EvaluateNoiseGrid(lookup, query->world, *spec, kMaxLocalSamples);
-    if (!image.ok()) return Fail(image.status().message());
+    if (!image.ok()) return ReportBadArguments("noise", image.status());
     noise = std::move(*image);
   } else {
     v1::NoiseGridRequest request;
     if (Status status = SetRequestWorld(arguments.remote, arguments.world, request); !status.ok()) {
-      return Fail(status.message());
+      return ReportBadArguments("noise", status);
     }
     request.set_origin_x(spec->origin.x);
     request.set_origin_y(spec->origin.y);
@@ -155,7 +151,7 @@ int RunNoise(const NoiseArguments& arguments) {
     d = response.world().min_distance();
   }
   if (Status status = WritePng(arguments.png, Render(noise, spec->channel, d)); !status.ok()) {
-    return Fail(status.message());
+    return ReportBadArguments("noise", status);
   }
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
 #include "client/options/format_options.h"
 #include "client/options/world_options.h"
@@ -20,17 +21,11 @@ struct PlaneArguments {
 
 int RunPlane(const PlaneArguments& arguments) {
   StatusOr<WorldQuery> query = ParseWorldQuery(arguments.world);
-  if (!query.ok()) {
-    std::cerr << "scallop plane: " << query.status().message() << '\n';
-    return 2;
-  }
+  if (!query.ok()) return ReportBadArguments("plane", query.status());
   PlaneEngine engine(query->engine);
   // Points runs PlaneEngine::ValidateQuery first, so bad rectangles end here.
   StatusOr<PlanePoints> points = engine.Points(query->world, query->rect);
-  if (!points.ok()) {
-    std::cerr << "scallop plane: " << points.status().message() << '\n';
-    return 2;
-  }
+  if (!points.ok()) return ReportBadArguments("plane", points.status());
   const double d = query->world.min_distance();
   const SvgStyle style{.seam_spacing = arguments.seams ? RegionLayout(d).side() : 0.0,
                        .dot_radius = d / 2};

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
 #include "client/options/format_options.h"
 #include "client/options/remote_options.h"
@@ -23,8 +24,7 @@ int RunPoints(const PointsArguments& arguments) {
   v1::GetPointsRequest request;
   if (Status status = SetRequestWorldAndRect(arguments.remote, arguments.world, request);
       !status.ok()) {
-    std::cerr << "scallop points: " << status.message() << '\n';
-    return 2;
+    return ReportBadArguments("points", status);
   }
   request.set_page_size(arguments.page_size);
   client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);

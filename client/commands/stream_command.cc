@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 
+#include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
 #include "client/options/format_options.h"
 #include "client/options/remote_options.h"
@@ -24,8 +25,7 @@ int RunStream(const StreamArguments& arguments) {
   v1::StreamPointsRequest request;
   if (Status status = SetRequestWorldAndRect(arguments.remote, arguments.world, request);
       !status.ok()) {
-    std::cerr << "scallop stream: " << status.message() << '\n';
-    return 2;
+    return ReportBadArguments("stream", status);
   }
   client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
   const client::CallOptions options = CallOptionsFor(arguments.remote);

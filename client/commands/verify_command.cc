@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
 #include "client/options/remote_options.h"
 #include "client/options/world_options.h"
@@ -113,8 +114,7 @@ int RunRemoteVerify(const VerifyArguments& arguments) {
   v1::VerifyRequest request;
   if (Status status = SetRequestWorldAndRect(arguments.remote, arguments.world, request);
       !status.ok()) {
-    std::cerr << "scallop verify: " << status.message() << '\n';
-    return 2;
+    return ReportBadArguments("verify", status);
   }
   client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
   v1::VerifyResponse response;
@@ -139,19 +139,13 @@ int RunRemoteVerify(const VerifyArguments& arguments) {
 int RunVerify(const VerifyArguments& arguments) {
   if (!arguments.remote.server.empty()) return RunRemoteVerify(arguments);
   StatusOr<WorldQuery> query = ParseWorldQuery(arguments.world);
-  if (!query.ok()) {
-    std::cerr << "scallop verify: " << query.status().message() << '\n';
-    return 2;
-  }
+  if (!query.ok()) return ReportBadArguments("verify", query.status());
   query->engine.max_query_area = kVerifyLimit.max_area;
   PlaneEngine engine(query->engine);
   // VerifyWorldRect checks the rectangle and the one grown by its halo
   // first: failures there are the caller's, so exit 2.
   StatusOr<VerifyReport> report = VerifyWorldRect(engine, query->world, query->rect, kVerifyLimit);
-  if (!report.ok()) {
-    std::cerr << "scallop verify: " << report.status().message() << '\n';
-    return 2;
-  }
+  if (!report.ok()) return ReportBadArguments("verify", report.status());
   if (arguments.json) {
     WriteJsonReport(std::cout, *query, *report);
   } else {

@@ -1,7 +1,5 @@
-// Registration of the remote options and the common failure report.
+// Registration of the remote options and the call options they give.
 #include "client/options/remote_options.h"
-
-#include <iostream>
 
 namespace scallop::cli {
 
@@ -27,11 +25,6 @@ client::CallOptions CallOptionsFor(const RemoteArguments& arguments) {
         std::chrono::milliseconds(static_cast<int64_t>(arguments.timeout_seconds * 1000.0 + 0.5));
   }
   return options;
-}
-
-int ReportCallFailure(const std::string& command, const grpc::Status& status) {
-  std::cerr << "scallop " << command << ": " << client::DescribeStatus(status) << '\n';
-  return 1;
 }
 
 }  // namespace scallop::cli

@@ -52,7 +52,4 @@ Status SetRequestWorldAndRect(const RemoteArguments& remote, const WorldArgument
   return Status::Ok();
 }
 
-// Prints "scallop COMMAND: CODE: message" for a failed call; returns exit code 1.
-int ReportCallFailure(const std::string& command, const grpc::Status& status);
-
 }  // namespace scallop::cli
