@@ -66,6 +66,9 @@ expect_exit 0 generate --domain 0,0,20,20
 check "generate CSV header is x,y" test "$(head -n 1 "$work/out")" = "x,y"
 # Small in area but long and thin: its grids would not fit in memory (was a crash).
 expect_bad_argument "scallop generate: domain" generate --domain 0,0,4e9,0.00001
+# A seed out of 0..2^64-1 is refused, not wrapped or saturated.
+expect_bad_argument "scallop generate: --seed" generate --domain 0,0,20,20 --seed -1
+expect_bad_argument "scallop generate: --seed" generate --domain 0,0,20,20 --seed 18446744073709551616
 expect_exit 0 plane --rect -5,-5,5,5
 check "plane CSV header is id,x,y" test "$(head -n 1 "$work/out")" = "id,x,y"
 check "plane prints points" test "$(wc -l <"$work/out")" -gt 50

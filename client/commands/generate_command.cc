@@ -9,6 +9,7 @@
 #include "client/commands/commands.h"
 #include "client/options/format_options.h"
 #include "client/options/rect_option.h"
+#include "client/options/world_options.h"
 #include "client/output/point_output.h"
 #include "scallop/analysis/point_statistics.h"
 #include "scallop/sampling/sampler.h"
@@ -22,7 +23,7 @@ struct GenerateArguments {
   std::string domain = "0,0,100,100";
   bool torus = false;
   double density = 2.0;
-  uint64_t seed = 1;
+  std::string seed = "1";  // text: CLI11 would wrap "-1" and saturate 2^64 silently
   PointFormat format = PointFormat::kCsv;
   bool stats = false;
   int64_t dart_failure_limit = 100000;
@@ -39,7 +40,9 @@ int RunGenerate(const GenerateArguments& arguments) {
   options.domain = {*domain, arguments.torus};
   options.min_distance = arguments.min_distance;
   options.density = arguments.density;
-  options.seed = arguments.seed;
+  auto seed = ParseSeed(arguments.seed);
+  if (!seed.ok()) return ReportBadArguments("generate", seed.status());
+  options.seed = *seed;
   options.dart_failure_limit = arguments.dart_failure_limit;
   options.dart_exhaustive = arguments.dart_exhaustive;
 
@@ -78,7 +81,9 @@ CommandRunner RegisterGenerate(CLI::App& app) {
   command->add_flag("--torus", arguments->torus, "Wrap the domain's opposite edges");
   command->add_option("--density", arguments->density, "r'/2r in (1, 2] for a1 and a2")
       ->capture_default_str();
-  command->add_option("--seed", arguments->seed, "Random seed")->capture_default_str();
+  command->add_option("--seed", arguments->seed, "Random seed, 0..2^64-1")
+      ->type_name("UINT")
+      ->capture_default_str();
   AddFormatOption(*command, arguments->format);
   command->add_flag("--stats", arguments->stats,
                     "Print count, rho, seconds and points per second to stderr");
