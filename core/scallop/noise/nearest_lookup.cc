@@ -70,6 +70,16 @@ size_t CallSlotOf(RegionKey key, size_t slot_count) {
       (slot_count - 1));
 }
 
+// Brute-force answers between polls of the caller's stop: each is an engine
+// query, so a stop waits for at most this many of them.
+constexpr size_t kAnswersPerStopPoll = 64;
+
+Status StopStatus() {
+  return Cancelled("nearest: stopped by the caller (cancelled or past deadline)");
+}
+
+bool StopNow(const StopRequested& stop) { return stop && stop(); }
+
 NearestPoint FromTwoNearest(const TwoNearest& best) {
   return {.id = best.id1,
           .position = best.point1,
@@ -144,8 +154,17 @@ Status NearestLookup::ValidatePosition(const World& world, Vec2 position, size_t
   return Status::Ok();
 }
 
+int64_t NearestLookup::CountRegions(const World& world, std::span<const Vec2> positions) {
+  const RegionLayout layout(world.min_distance);
+  std::vector<RegionKey> keys;
+  keys.reserve(positions.size());
+  for (const Vec2& p : positions) keys.push_back(layout.RegionOf(p.x, p.y));
+  std::sort(keys.begin(), keys.end());
+  return std::unique(keys.begin(), keys.end()) - keys.begin();
+}
+
 Status NearestLookup::Nearest(const World& world, std::span<const Vec2> positions,
-                              std::span<NearestPoint> results) {
+                              std::span<NearestPoint> results, const StopRequested& stop) {
   if (Status status = ValidateWorld(world); !status.ok()) return status;
   if (results.size() != positions.size()) {
     return InvalidArgument("results: must have one entry per position");
@@ -169,12 +188,14 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   };
   if (options_.method == NearestMethod::kBruteForce) {
     for (size_t k = 0; k < positions.size(); ++k) {
+      if (k % kAnswersPerStopPoll == 0 && StopNow(stop)) return StopStatus();
       if (Status status = answer_by_brute_force(k, positions[k]); !status.ok()) return status;
     }
   } else {
     std::unique_ptr<Scratch> scratch = TakeScratch();
     std::vector<GridHandle> grids;
-    if (Status status = AssignGrids(canonical, positions, grids, scratch->grid_of); !status.ok()) {
+    if (Status status = AssignGrids(canonical, positions, grids, scratch->grid_of, stop);
+        !status.ok()) {
       return status;
     }
     // Positions grouped by grid (a counting sort, stable), so each grid is
@@ -195,6 +216,7 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
       sorted[next[grid_of[k]]++] = {positions[k], static_cast<uint32_t>(k)};
     }
     for (size_t g = 0; g < grids.size(); ++g) {
+      if (StopNow(stop)) return StopStatus();
       const NearestSearchGrid& grid = *grids[g];
       for (uint32_t j = starts[g]; j < starts[g + 1]; ++j) {
         TwoNearest best;
@@ -203,6 +225,8 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
           continue;
         }
         ++fallbacks;
+        // A fallback queries the engine, possibly cold: poll before each.
+        if (StopNow(stop)) return StopStatus();
         if (Status status = answer_by_brute_force(sorted[j].index, sorted[j].position);
             !status.ok()) {
           return status;
@@ -218,7 +242,8 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
 }
 
 Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> positions,
-                                  std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of) {
+                                  std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of,
+                                  const StopRequested& stop) {
   const RegionLayout layout(world.min_distance);
   const double inverse_side = 1.0 / layout.side();
   struct CallSlot {
@@ -246,6 +271,8 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
     if (!slot->used || slot->key != key) {
       // With every probed slot taken, the last is reused: a region met
       // again then gets a second entry, harmless since the grid is shared.
+      // A grid may cost a cold generation: the place to notice a stop.
+      if (StopNow(stop)) return StopStatus();
       StatusOr<GridHandle> grid = Grid(world, key);
       if (!grid.ok()) return grid.status();
       *slot = {key, static_cast<uint32_t>(grids.size()), true};
