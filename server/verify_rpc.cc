@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "query_limits.h"
+#include "region_warmup.h"
 #include "scallop/plane/world_verifier.h"
 #include "scallop_service.h"
 #include "status_mapping.h"
@@ -14,17 +15,28 @@ namespace scallop::server {
 grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* context,
                                                  const v1::VerifyRequest* request,
                                                  v1::VerifyResponse* response) {
-  return RunUnary(context, "Verify", [this, request, response](RequestLog& log) {
+  return RunUnary(context, "Verify", [this, context, request, response](RequestLog& log) {
     World world;
     Rect rect;
-    if (grpc::Status status = ResolveQuery(*request, config_.max_verify_area, "max_verify_area",
-                                           log, world, rect);
+    if (grpc::Status status =
+            ResolveQuery(*request, config_.max_verify_area, "max_verify_area", log, world, rect);
         !status.ok()) {
       return status;
     }
+    // The rectangle and its halo generated a block at a time, so a client
+    // that goes stops the generation (the verifier itself runs to its end).
+    // A halo beyond the range is left to the verifier to report.
+    const double halo = 2 * world.min_distance;
+    const Rect grown{rect.x0 - halo, rect.y0 - halo, rect.x1 + halo, rect.y1 + halo};
+    if (engine_.ValidateQuery(world, grown).ok()) {
+      if (grpc::Status status = WarmRegions(engine_, world, grown, StopWhenGone(context));
+          !status.ok()) {
+        return status;
+      }
+    }
     StatusOr<VerifyReport> report = VerifyWorldRect(engine_, world, rect);
     if (!report.ok()) return ToGrpcStatus(report.status());
-    const double d = world.min_distance, halo = 2 * d;
+    const double d = world.min_distance;
     const double max_abs =
         std::max({std::abs(rect.x0), std::abs(rect.x1), std::abs(rect.y0), std::abs(rect.y1)}) +
         halo;
