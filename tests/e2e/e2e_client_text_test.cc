@@ -5,7 +5,6 @@
 
 #include <sstream>
 #include <string>
-#include <thread>
 
 #include "scallopd_process.h"
 #include "world_messages.h"
@@ -42,11 +41,7 @@ TEST(E2eClientTextTest, ControlBytesAreEscapedInMessagesAndLog) {
   EXPECT_NE(status.error_message().find("x\\x00y\\x0a[2026"), std::string::npos)
       << status.error_message();
   // The call's log line is written when it ends: wait for it.
-  std::string log;
-  for (int attempt = 0; attempt < 500 && log.find("NOT_FOUND") == std::string::npos; ++attempt) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    log = server->Log();
-  }
+  const std::string log = server->WaitForLog("NOT_FOUND", std::chrono::seconds(10));
   std::istringstream lines(log);
   for (std::string line; std::getline(lines, line);) {
     EXPECT_NE(line.rfind("[2026-01-01", 0), 0u) << "a forged line: " << line;
@@ -65,11 +60,7 @@ TEST(E2eClientTextTest, ALongNameIsNotFoundAndCutShort) {
   EXPECT_LT(status.error_message().size(), 1024u);
   EXPECT_NE(status.error_message().find("(1048576 bytes)"), std::string::npos)
       << status.error_message();
-  std::string log;
-  for (int attempt = 0; attempt < 500 && log.find("NOT_FOUND") == std::string::npos; ++attempt) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    log = server->Log();
-  }
+  const std::string log = server->WaitForLog("NOT_FOUND", std::chrono::seconds(10));
   EXPECT_NE(log.find("NOT_FOUND"), std::string::npos);
   EXPECT_LT(log.size() - log_before, 4096u) << "the name went to the log whole";
 }

@@ -46,18 +46,6 @@ v1::NoiseGridRequest ScatteredNoiseGrid(uint64_t seed, int width, int height) {
   return request;
 }
 
-// Polls `log` until it holds `text` or `timeout` passes; the last log read.
-std::string WaitForLog(const ScallopdProcess& server, const std::string& text,
-                       milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  std::string log = server.Log();
-  while (log.find(text) == std::string::npos && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(milliseconds(20));
-    log = server.Log();
-  }
-  return log;
-}
-
 // Whether a log line of `method` says code=OK: its work ran to the end.
 bool AnsweredInLog(const std::string& log, const std::string& method) {
   std::istringstream lines(log);
@@ -139,7 +127,7 @@ TEST(E2eCostBoundsTest, AbandonedCallsStopAndFreeTheServer) {
   const grpc::Status status = client.GetPoints(request, points, {.timeout = seconds(3)});
   EXPECT_TRUE(status.ok()) << client::DescribeStatus(status);
   // The server logged both as ended, neither as answered.
-  const std::string log = WaitForLog(*server, "] NoiseGrid ", seconds(60));
+  const std::string log = server->WaitForLog("] NoiseGrid ", seconds(60));
   EXPECT_NE(log.find("] Nearest "), std::string::npos) << log;
   EXPECT_FALSE(AnsweredInLog(log, "Nearest")) << log;
   EXPECT_FALSE(AnsweredInLog(log, "NoiseGrid")) << log;

@@ -119,4 +119,15 @@ std::string ScallopdProcess::Log() const {
   return text.str();
 }
 
+std::string ScallopdProcess::WaitForLog(const std::string& text,
+                                        std::chrono::milliseconds timeout) const {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  std::string log = Log();
+  while (log.find(text) == std::string::npos && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    log = Log();
+  }
+  return log;
+}
+
 }  // namespace scallop::testing

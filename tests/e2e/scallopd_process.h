@@ -35,6 +35,9 @@ class ScallopdProcess {
   int WaitForExit(std::chrono::milliseconds timeout);
   // Everything it wrote to stderr (its log) so far.
   std::string Log() const;
+  // The log once it holds `text` (a call's line is written when the call
+  // ends), or as it is after `timeout`.
+  std::string WaitForLog(const std::string& text, std::chrono::milliseconds timeout) const;
 
  private:
   ScallopdProcess() = default;
