@@ -24,8 +24,10 @@ namespace scallop {
 // so every replica agrees to the bit; f1 and f2 are the square roots of the
 // first two (correctly rounded, hence exact functions of the points).
 struct NearestPoint {
-  uint64_t id = 0;         // nearest point's id (point_id.h)
-  Vec2 position;           // nearest point
+  uint64_t id = 0;  // nearest point's id (point_id.h)
+  Vec2 position;    // nearest point
+  // Bounds at least 2 d inside the precision limit; nearer, F1 < (1 + sqrt 2)
+  // d (1 + tolerance) (docs/noise.md, "At the limit").
   double f1 = 0;           // distance to it: < d (1 + tolerance) on our maximal worlds
   double f2 = 0;           // distance to the second nearest: f1 + f2 < 2 d (1 + tolerance)
   uint64_t second_id = 0;  // second nearest point's id
