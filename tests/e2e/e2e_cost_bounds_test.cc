@@ -133,6 +133,33 @@ TEST(E2eCostBoundsTest, AbandonedCallsStopAndFreeTheServer) {
   EXPECT_FALSE(AnsweredInLog(log, "NoiseGrid")) << log;
 }
 
+// The calls that generate rectangles stop too: a cold GetPoints and a cold
+// Verify of the largest area (about 3,900 regions, some 600 ms of generation
+// on one thread here) expire within 100 ms; the server logs them as
+// stopped, where the old one generated (and verified) to the end, code=OK.
+TEST(E2eCostBoundsTest, ExpiredColdRectanglesStopGenerating) {
+  auto server = ScallopdProcess::Start({"--threads", "1"});
+  ASSERT_NE(server, nullptr);
+  client::ScallopClient client = server->Client();
+  v1::GetPointsRequest big;
+  *big.mutable_world() = WorldToMessage(World{.seed = 21});
+  *big.mutable_rect() = RectToMessage({0, 0, 1000, 1000});
+  v1::GetPointsResponse points;
+  EXPECT_EQ(client.GetPoints(big, points, {.timeout = milliseconds(100)}).error_code(),
+            grpc::StatusCode::DEADLINE_EXCEEDED);
+  std::string log = server->WaitForLog("] GetPoints ", seconds(60));
+  EXPECT_FALSE(AnsweredInLog(log, "GetPoints")) << log;
+
+  v1::VerifyRequest verify;
+  *verify.mutable_world() = WorldToMessage(World{.seed = 22});
+  *verify.mutable_rect() = RectToMessage({0, 0, 1000, 1000});
+  v1::VerifyResponse report;
+  EXPECT_EQ(client.Verify(verify, report, {.timeout = milliseconds(100)}).error_code(),
+            grpc::StatusCode::DEADLINE_EXCEEDED);
+  log = server->WaitForLog("] Verify ", seconds(60));
+  EXPECT_FALSE(AnsweredInLog(log, "Verify")) << log;
+}
+
 TEST(E2eCostBoundsTest, SigtermDuringABigCallExitsWithinTheGrace) {
   auto server = ScallopdProcess::Start(
       {"--threads", "1", "--grace-seconds", "1", "--metrics-listen", "127.0.0.1:0"});
