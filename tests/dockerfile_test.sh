@@ -33,8 +33,12 @@ dpkg -S $(cat "$work/libraries") 2>/dev/null | cut -d: -f1 | tr -d ' ' | tr ',' 
 [ "$(wc -l <"$work/needed")" -gt 5 ] || fail "could not map the programs' libraries to packages"
 missing=$(comm -23 "$work/needed" "$work/listed")
 [ -z "$missing" ] || fail "runtime stage lacks packages: $missing"
+# Qualified by the machine's architecture: a machine that also holds another
+# architecture's copy (the aarch64 cross build's) would find the bare name ambiguous.
+arch=$(dpkg --print-architecture)
 while read -r package; do
-  dpkg -s "$package" >/dev/null 2>&1 || fail "runtime package $package is not a Debian 12 package here"
+  dpkg -s "$package:$arch" >/dev/null 2>&1 || dpkg -s "$package" >/dev/null 2>&1 ||
+    fail "runtime package $package is not a Debian 12 package here"
 done <"$work/listed"
 
 grep -Eq '^USER [a-z]' "$work/runtime" || fail "no USER: the server would run as root"
