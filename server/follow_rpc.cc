@@ -1,14 +1,10 @@
 // Follow: a bidirectional stream that follows a moving viewport. Each update
 // is read only once the answer to the previous one is written, so a slow
 // client holds back the server instead of filling its memory; a write that
-// does not complete within follow_stall_seconds ends the call with
-// DEADLINE_EXCEEDED (see docs/streaming.md for why that code).
-#include <grpc/grpc.h>
-#include <grpcpp/alarm.h>
-
-#include <atomic>
+// does not complete within follow_stall_seconds, or no update within
+// follow_idle_seconds, ends the call with DEADLINE_EXCEEDED (see
+// docs/streaming.md for why that code).
 #include <boost/asio/post.hpp>
-#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,26 +14,12 @@
 #include "follow_prefetch.h"
 #include "scallop/plane/viewport_tracker.h"
 #include "scallop_service.h"
+#include "stall_timer.h"
 #include "status_mapping.h"
 #include "world_messages.h"
 
 namespace scallop::server {
 namespace {
-
-// What a stall alarm touches: the call (a reference of our own, so it stays
-// valid however late the alarm runs) and which write is being watched.
-// Shared with the alarm callbacks, which can outlive the reactor.
-struct StallWatch {
-  explicit StallWatch(grpc_call* call_to_cancel) : call(call_to_cancel) { grpc_call_ref(call); }
-  ~StallWatch() { grpc_call_unref(call); }
-  StallWatch(const StallWatch&) = delete;
-  StallWatch& operator=(const StallWatch&) = delete;
-
-  grpc_call* const call;
-  std::atomic<uint64_t> watched_write = 0;  // 0: no write pending
-  std::atomic<bool> stalled = false;
-  std::string message;  // the status message a stall ends the call with
-};
 
 ViewportUpdate UpdateFromMessage(const v1::FollowRequest& request) {
   ViewportUpdate update{.viewport = RectFromMessage(request.viewport()),
@@ -61,20 +43,25 @@ class FollowReactor final
     : public AdmittedStream<grpc::ServerBidiReactor<v1::FollowRequest, v1::FollowResponse>> {
  public:
   FollowReactor(ScallopService& service, grpc::CallbackServerContext* context)
-      : AdmittedStream(service.in_flight_, "Follow", service.metrics_),
+      : AdmittedStream(service.streams_in_flight_, "Follow", service.metrics_),
         service_(service),
         context_(context),
         stall_seconds_(service.config_.follow_stall_seconds),
-        stall_watch_(std::make_shared<StallWatch>(context->c_call())) {
-    stall_watch_->message = StallStatus().error_message();
+        idle_seconds_(service.config_.follow_idle_seconds),
+        stall_message_(std::make_shared<const std::string>(StallStatus().error_message())),
+        idle_message_(std::make_shared<const std::string>(IdleStatus().error_message())),
+        timer_(context) {
     if (!Admit()) return;
-    StartRead(&request_);
+    Read();
   }
 
   void OnReadDone(bool ok) override {
+    timer_.Disarm();
     if (!ok) {
-      // The client closed its side (WritesDone), or the call broke.
-      FinishWith(context_->IsCancelled()
+      // The client closed its side (WritesDone), sent nothing for too long,
+      // or the call broke.
+      FinishWith(timer_.fired() ? IdleStatus()
+                 : context_->IsCancelled()
                      ? grpc::Status(grpc::StatusCode::CANCELLED, "follow: cancelled")
                      : grpc::Status::OK);
       return;
@@ -83,9 +70,9 @@ class FollowReactor final
   }
 
   void OnWriteDone(bool ok) override {
-    stall_watch_->watched_write = 0;
+    timer_.Disarm();
     if (!ok) {
-      FinishWith(stall_watch_->stalled
+      FinishWith(timer_.fired()
                      ? StallStatus()
                      : grpc::Status(grpc::StatusCode::CANCELLED,
                                     "follow: the client went away or the call was cancelled"));
@@ -99,15 +86,20 @@ class FollowReactor final
  private:
   grpc::Status StallStatus() const {
     return {grpc::StatusCode::DEADLINE_EXCEEDED,
-            "follow: the client read nothing for " + FormatSeconds(stall_seconds_) +
+            "follow: the client read nothing for " + SecondsText(stall_seconds_) +
                 " s (follow_stall_seconds); reconnect and list held_regions to resume"};
   }
 
-  static std::string FormatSeconds(double seconds) {
-    std::string text = std::to_string(seconds);
-    text.erase(text.find_last_not_of('0') + 1);
-    if (text.back() == '.') text.pop_back();
-    return text;
+  grpc::Status IdleStatus() const {
+    return {grpc::StatusCode::DEADLINE_EXCEEDED,
+            "follow: the client sent no update for " + SecondsText(idle_seconds_) +
+                " s (follow_idle_seconds); reconnect and list held_regions to resume"};
+  }
+
+  // Waits for the next update, for at most follow_idle_seconds.
+  void Read() {
+    timer_.Arm(idle_seconds_, idle_message_);
+    StartRead(&request_);
   }
 
   // Runs on the request pool: validates the update, moves the tracker,
@@ -177,46 +169,27 @@ class FollowReactor final
 
   void WriteNextOrRead() {
     if (next_message_ == answer_.size()) {
-      StartRead(&request_);
+      Read();
       return;
     }
     const v1::FollowResponse& response = answer_[next_message_++];
-    const uint64_t write = ++writes_started_;
-    stall_watch_->watched_write = write;
-    // A fresh alarm per write: the previous one has fired or been cancelled.
-    stall_alarm_ = std::make_unique<grpc::Alarm>();
-    stall_alarm_->Set(std::chrono::system_clock::now() +
-                          std::chrono::duration_cast<std::chrono::system_clock::duration>(
-                              std::chrono::duration<double>(stall_seconds_)),
-                      [watch = stall_watch_, write](bool fired) {
-                        if (fired && watch->watched_write == write) Stall(*watch);
-                      });
+    timer_.Arm(stall_seconds_, stall_message_);
     StartWrite(&response);
-  }
-
-  // The pending write has not completed in time: the client stopped
-  // reading. Cancelling with our status sends it in the trailers (headers
-  // are not flow-controlled, so they pass the full window); the pending
-  // write then fails and OnWriteDone finishes the call. Should the write
-  // complete in the same instant, the call still ends: it was that slow.
-  static void Stall(StallWatch& watch) {
-    watch.stalled = true;
-    grpc_call_cancel_with_status(watch.call, GRPC_STATUS_DEADLINE_EXCEEDED, watch.message.c_str(),
-                                 nullptr);
   }
 
   ScallopService& service_;
   grpc::CallbackServerContext* context_;
   const double stall_seconds_;
+  const double idle_seconds_;
+  const std::shared_ptr<const std::string> stall_message_;
+  const std::shared_ptr<const std::string> idle_message_;
+  StallTimer timer_;  // one wait at a time: a write, or the next update
   World world_;
   std::optional<ViewportTracker> tracker_;  // set by the first update
   std::optional<FollowPrefetch> prefetch_;  // set by the first update
   v1::FollowRequest request_;               // the update being read or answered
   std::vector<v1::FollowResponse> answer_;  // the messages of the current answer
   size_t next_message_ = 0;
-  uint64_t writes_started_ = 0;
-  std::shared_ptr<StallWatch> stall_watch_;
-  std::unique_ptr<grpc::Alarm> stall_alarm_;
 };
 
 grpc::ServerBidiReactor<v1::FollowRequest, v1::FollowResponse>* ScallopService::Follow(

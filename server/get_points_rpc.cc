@@ -3,6 +3,7 @@
 // rectangle's regions are all cached, on the request pool otherwise.
 #include <algorithm>
 
+#include "region_warmup.h"
 #include "scallop_service.h"
 #include "status_mapping.h"
 #include "world_messages.h"
@@ -17,14 +18,16 @@ grpc::ServerUnaryReactor* ScallopService::GetPoints(grpc::CallbackServerContext*
       [this, request, response](RequestLog& log) {
         return AnswerGetPoints(*request, *response, log, /*may_block=*/false);
       },
-      [this, request, response](RequestLog& log) {
-        return *AnswerGetPoints(*request, *response, log, /*may_block=*/true);
+      [this, context, request, response](RequestLog& log) {
+        return *AnswerGetPoints(*request, *response, log, /*may_block=*/true,
+                                StopWhenGone(context));
       });
 }
 
 std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsRequest& request,
                                                             v1::GetPointsResponse& response,
-                                                            RequestLog& log, bool may_block) {
+                                                            RequestLog& log, bool may_block,
+                                                            const std::function<bool()>& stop) {
   World world;
   Rect rect;
   if (grpc::Status status =
@@ -50,6 +53,8 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
   // first page, so later pages cost a copy, and the order is the same.
   std::vector<RegionHandle> regions;
   if (may_block) {
+    // Cold regions a block at a time, so a client that goes stops the work.
+    if (grpc::Status status = WarmRegions(engine_, world, rect, stop); !status.ok()) return status;
     StatusOr<std::vector<RegionHandle>> resolved = engine_.Regions(world, rect);
     if (!resolved.ok()) return ToGrpcStatus(resolved.status());
     regions = std::move(*resolved);

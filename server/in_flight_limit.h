@@ -1,6 +1,6 @@
-// Load shedding: at most N requests in flight; beyond that a request is refused
-// at once with RESOURCE_EXHAUSTED, so overload costs clients a retry instead
-// of growing queues and deadlines missed by everyone.
+// Load shedding: at most N calls of a kind in flight; beyond that a call is
+// refused at once with RESOURCE_EXHAUSTED, so overload costs clients a retry
+// instead of growing queues and deadlines missed by everyone.
 #pragma once
 
 #include <grpcpp/support/status.h>
@@ -13,7 +13,8 @@ namespace scallop::server {
 
 class InFlightLimit {
  public:
-  explicit InFlightLimit(int limit) : limit_(limit) {}
+  // `setting` names the limit in refusals, e.g. "max_in_flight".
+  InFlightLimit(int limit, std::string setting) : limit_(limit), setting_(std::move(setting)) {}
 
   // True (and counted) when under the limit; pair with Release. Lock-free.
   bool TryAdmit() {
@@ -25,15 +26,16 @@ class InFlightLimit {
   int limit() const { return limit_; }
   // The status a refused call gets: it names the setting and asks for backoff.
   grpc::Status Refusal() const {
-    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
-            "server: " + std::to_string(limit_) +
-                " requests already in flight (max_in_flight); retry with backoff"};
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED, "server: " + std::to_string(limit_) +
+                                                      " calls already in flight (" + setting_ +
+                                                      "); retry with backoff"};
   }
   // Admitted calls now (a refused one may count for an instant: clamped).
   int in_flight() const { return std::min(in_flight_.load(), limit_); }
 
  private:
   const int limit_;
+  const std::string setting_;
   std::atomic<int> in_flight_{0};
 };
 

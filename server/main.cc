@@ -51,8 +51,14 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
       ->default_str("1e8");
   app.add_option("--max-verify-area", flags.max_verify_area, "Verify area limit, d^2")
       ->default_str("1e6");
-  app.add_option("--max-in-flight", flags.max_in_flight, "Concurrent requests before shedding")
+  app.add_option("--max-in-flight", flags.max_in_flight, "Concurrent unary calls before shedding")
       ->default_str(std::to_string(config.max_in_flight));
+  app.add_option("--max-streams-in-flight", flags.max_streams_in_flight,
+                 "Concurrent streaming calls before shedding (apart from --max-in-flight)")
+      ->default_str(std::to_string(config.max_streams_in_flight));
+  app.add_flag("--reuse-port", flags.reuse_port,
+               "Share the port with other processes (SO_REUSEPORT); without it a port in use "
+               "is an error");
   app.add_option("--grace-seconds", flags.grace_seconds, "Time in-flight calls get on SIGTERM")
       ->default_str("10");
   app.add_option("--drain-seconds", flags.drain_seconds,
@@ -93,6 +99,8 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
   apply("--max-stream-area", &ServerConfig::max_stream_area);
   apply("--max-verify-area", &ServerConfig::max_verify_area);
   apply("--max-in-flight", &ServerConfig::max_in_flight);
+  apply("--max-streams-in-flight", &ServerConfig::max_streams_in_flight);
+  apply("--reuse-port", &ServerConfig::reuse_port);
   apply("--grace-seconds", &ServerConfig::grace_seconds);
   apply("--drain-seconds", &ServerConfig::drain_seconds);
   apply("--page-token-secret", &ServerConfig::page_token_secret);
@@ -141,9 +149,10 @@ int main(int argc, char** argv) {
   // server announces itself; announced after, so the address line stays first.
   std::unique_ptr<scallop::server::MetricsHttpServer> metrics_server;
   if (!config.metrics_listen.empty()) {
-    auto started = scallop::server::MetricsHttpServer::Start(config.metrics_listen, [&] {
-      return metrics.Exposition(engine.CacheStats(), service.requests_in_flight());
-    });
+    auto started = scallop::server::MetricsHttpServer::Start(
+        config.metrics_listen,
+        [&] { return metrics.Exposition(engine.CacheStats(), service.requests_in_flight()); },
+        config.max_metrics_connections);
     if (!started.ok()) {
       std::cerr << "scallopd: " << started.status().message() << '\n';
       return 2;
@@ -155,11 +164,15 @@ int main(int argc, char** argv) {
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   int port = 0;
+  // gRPC shares ports by default (SO_REUSEPORT): a second scallopd on a port
+  // in use would start silently and take half the calls. Only on request.
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, config.reuse_port ? 1 : 0);
   builder.AddListeningPort(config.listen, grpc::InsecureServerCredentials(), &port);
   builder.RegisterService(&service);
   std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
   if (!server || port == 0) {
-    spdlog::error("cannot listen on {}", config.listen);
+    spdlog::error("cannot listen on {} (in use? --reuse-port shares a port on purpose)",
+                  config.listen);
     return 1;
   }
   const std::string host = config.listen.substr(0, config.listen.rfind(':'));
@@ -169,6 +182,11 @@ int main(int argc, char** argv) {
         config.metrics_listen.substr(0, config.metrics_listen.rfind(':'));
     std::cout << "scallopd metrics on " << metrics_host << ':' << metrics_server->port()
               << std::endl;
+  }
+  if (config.page_token_secret.empty()) {
+    spdlog::warn(
+        "page tokens are keyed from the world set, which anyone who knows the worlds can "
+        "compute; set page_token_secret (or SCALLOPD_PAGE_TOKEN_SECRET) in production");
   }
   spdlog::info("listening on {}:{}; default world {} ({}); {} threads", host, port,
                config.default_world, config.worlds.at(config.default_world).Describe(),

@@ -1,8 +1,13 @@
+// The metrics endpoint: an Asio acceptor with a connection cap, and one
+// keep-alive HTTP session a connection.
 #include "metrics_http_server.h"
+
+#include <spdlog/spdlog.h>
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <thread>
@@ -14,12 +19,23 @@ namespace asio = boost::asio;
 namespace http = boost::beast::http;
 using tcp = asio::ip::tcp;
 
+// How long accepting pauses after an error such as EMFILE: long enough not
+// to spin while descriptors are short, short enough that scrapes resume at
+// once when they come back.
+constexpr auto kAcceptRetryDelay = std::chrono::milliseconds(100);
+
 // One connection: read a request, answer it, repeat while keep-alive. The
-// session owns itself through the shared_ptr its pending handler holds.
+// session owns itself through the shared_ptr its pending handler holds, and
+// counts itself in `open` (the server's count, on the same single thread).
 class Session : public std::enable_shared_from_this<Session> {
  public:
-  Session(tcp::socket socket, const MetricsHttpServer::Render& render)
-      : stream_(std::move(socket)), render_(render) {}
+  Session(tcp::socket socket, const MetricsHttpServer::Render& render, int& open)
+      : stream_(std::move(socket)), render_(render), open_(open) {
+    ++open_;
+  }
+  ~Session() { --open_; }
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
 
   void Read() {
     request_ = {};
@@ -67,6 +83,7 @@ class Session : public std::enable_shared_from_this<Session> {
 
   boost::beast::tcp_stream stream_;
   const MetricsHttpServer::Render& render_;
+  int& open_;
   boost::beast::flat_buffer buffer_;
   http::request<http::string_body> request_;
   http::response<http::string_body> response_;
@@ -75,22 +92,44 @@ class Session : public std::enable_shared_from_this<Session> {
 }  // namespace
 
 struct MetricsHttpServer::State {
+  // Declared before `context`, whose destruction destroys the sessions still
+  // pending, which then uncount themselves here.
+  int open_connections = 0;  // touched only on `thread`
+  int max_connections = 16;
   asio::io_context context{1};
   tcp::acceptor acceptor{context};
+  asio::steady_timer retry{context};
   Render render;
   std::thread thread;
 
+  // Every path re-arms (but Stop's): a handler that returned on an error
+  // left the endpoint dead for the life of the process.
   void Accept() {
     acceptor.async_accept([this](boost::beast::error_code error, tcp::socket socket) {
-      if (error) return;  // closed by Stop
-      std::make_shared<Session>(std::move(socket), render)->Read();
+      if (error == asio::error::operation_aborted) return;  // closed by Stop
+      if (error) {
+        spdlog::warn("metrics: accept failed ({}); retrying in {} ms", error.message(),
+                     kAcceptRetryDelay.count());
+        retry.expires_after(kAcceptRetryDelay);
+        retry.async_wait([this](boost::beast::error_code wait_error) {
+          if (!wait_error) Accept();
+        });
+        return;
+      }
+      if (open_connections >= max_connections) {
+        boost::beast::error_code ignored;
+        socket.close(ignored);  // over the cap: its descriptor back at once
+      } else {
+        std::make_shared<Session>(std::move(socket), render, open_connections)->Read();
+      }
       Accept();
     });
   }
 };
 
 StatusOr<std::unique_ptr<MetricsHttpServer>> MetricsHttpServer::Start(const std::string& listen,
-                                                                      Render render) {
+                                                                      Render render,
+                                                                      int max_connections) {
   const size_t colon = listen.rfind(':');
   if (colon == std::string::npos) {
     return InvalidArgument("--metrics-listen: '" + listen + "' is not HOST:PORT");
@@ -109,6 +148,7 @@ StatusOr<std::unique_ptr<MetricsHttpServer>> MetricsHttpServer::Start(const std:
   }
   auto state = std::make_unique<State>();
   state->render = std::move(render);
+  state->max_connections = max_connections;
   boost::system::error_code error;
   const asio::ip::address address =
       asio::ip::make_address(host == "localhost" ? "127.0.0.1" : host, error);

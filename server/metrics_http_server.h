@@ -1,6 +1,8 @@
 // The HTTP endpoint Prometheus scrapes: GET /metrics answers the text of a
 // render function; anything else is 404 (405 for other methods). Boost.Beast
-// on its own Asio thread, so scrapes never wait behind gRPC work.
+// on its own Asio thread, so scrapes never wait behind gRPC work. Connections
+// are capped and accepting resumes after errors (out of file descriptors), so
+// idle or abandoned connections cannot take the endpoint down for good.
 #pragma once
 
 #include <functional>
@@ -16,10 +18,13 @@ class MetricsHttpServer {
   using Render = std::function<std::string()>;
 
   // Listens on HOST:PORT (port 0: any free port) and serves until Stop or
-  // destruction. INVALID_ARGUMENT naming `--metrics-listen` when the address
-  // cannot be parsed or bound.
+  // destruction, at most `max_connections` connections at once: one beyond
+  // that is closed as soon as it is accepted (the scraper retries) rather
+  // than left to hold a file descriptor. INVALID_ARGUMENT naming
+  // `--metrics-listen` when the address cannot be parsed or bound.
   static StatusOr<std::unique_ptr<MetricsHttpServer>> Start(const std::string& listen,
-                                                            Render render);
+                                                            Render render,
+                                                            int max_connections = 16);
   ~MetricsHttpServer();
 
   int port() const;

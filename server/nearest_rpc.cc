@@ -1,5 +1,7 @@
 // Nearest: the cellular-noise basis (nearest id and position, F1, F2, cell
 // value) at a batch of positions, as packed arrays in the request's order.
+// Cost follows the distinct regions the positions lie in, so that is what
+// is bounded (max_nearest_regions), before any work.
 #include <string>
 #include <vector>
 
@@ -12,7 +14,7 @@ namespace scallop::server {
 grpc::ServerUnaryReactor* ScallopService::Nearest(grpc::CallbackServerContext* context,
                                                   const v1::NearestRequest* request,
                                                   v1::NearestResponse* response) {
-  return RunUnary(context, "Nearest", [this, request, response](RequestLog& log) {
+  return RunUnary(context, "Nearest", [this, context, request, response](RequestLog& log) {
     ResolvedWorld resolved;
     if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
     const World& world = resolved.world;
@@ -31,9 +33,21 @@ grpc::ServerUnaryReactor* ScallopService::Nearest(grpc::CallbackServerContext* c
                               " (max_nearest_batch)");
     }
     std::vector<Vec2> positions(message.xs_size());
-    for (int k = 0; k < message.xs_size(); ++k) positions[k] = {message.xs(k), message.ys(k)};
+    for (int k = 0; k < message.xs_size(); ++k) {
+      positions[k] = {message.xs(k), message.ys(k)};
+      if (Status status = NearestLookup::ValidatePosition(world, positions[k], k); !status.ok()) {
+        return ToGrpcStatus(status);
+      }
+    }
+    if (grpc::Status status =
+            CheckNearestRegions(NearestLookup::CountRegions(world, positions), "positions",
+                                "split scattered positions into several calls");
+        !status.ok()) {
+      return status;
+    }
     std::vector<NearestPoint> results(positions.size());
-    if (Status status = nearest_lookup_.Nearest(world, positions, results); !status.ok()) {
+    if (Status status = nearest_lookup_.Nearest(world, positions, results, StopWhenGone(context));
+        !status.ok()) {
       return ToGrpcStatus(status);
     }
     *response->mutable_world() = WorldToMessage(world);

@@ -1,5 +1,6 @@
 // NoiseGrid: one channel of the cellular-noise basis on a regular grid of
-// samples, row-major, as scallop/noise/noise_grid.h evaluates it.
+// samples, row-major, as scallop/noise/noise_grid.h evaluates it. Its cost
+// follows the regions the samples lie in (max_nearest_regions, checked first).
 #include <optional>
 
 #include "scallop/noise/noise_grid.h"
@@ -32,7 +33,7 @@ std::optional<NoiseChannel> ChannelFromMessage(v1::NoiseChannel channel) {
 grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext* context,
                                                     const v1::NoiseGridRequest* request,
                                                     v1::NoiseGridResponse* response) {
-  return RunUnary(context, "NoiseGrid", [this, request, response](RequestLog& log) {
+  return RunUnary(context, "NoiseGrid", [this, context, request, response](RequestLog& log) {
     ResolvedWorld resolved;
     if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
     const World& world = resolved.world;
@@ -48,16 +49,23 @@ grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext*
                              .width = request->width(),
                              .height = request->height(),
                              .channel = *channel};
-    StatusOr<NoiseImage> image =
-        EvaluateNoiseGrid(nearest_lookup_, world, spec, config_.max_noise_grid_samples);
-    if (!image.ok()) {
+    if (Status status = ValidateNoiseGrid(world, spec, config_.max_noise_grid_samples);
+        !status.ok()) {
       // The core names the limit's value; say which setting it is.
-      Status status = image.status();
       if (status.message().starts_with("width * height")) {
         status = {status.code(), status.message() + " (max_noise_grid_samples)"};
       }
       return ToGrpcStatus(status);
     }
+    if (grpc::Status status =
+            CheckNearestRegions(NoiseGridRegions(world, spec), "step: the samples",
+                                "use a smaller step or fewer samples");
+        !status.ok()) {
+      return status;
+    }
+    StatusOr<NoiseImage> image = EvaluateNoiseGrid(
+        nearest_lookup_, world, spec, config_.max_noise_grid_samples, StopWhenGone(context));
+    if (!image.ok()) return ToGrpcStatus(image.status());
     *response->mutable_world() = WorldToMessage(world);
     response->set_width(image->width);
     response->set_height(image->height);

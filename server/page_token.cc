@@ -26,10 +26,13 @@ uint64_t ReadWord(const std::string& in, size_t at) {
   return word;
 }
 
+// The bits of a coordinate, with -0 read as +0: they name the same
+// rectangle, and a token minted for one must page the other.
+uint64_t CoordinateBits(double value) { return std::bit_cast<uint64_t>(value + 0.0); }
+
 uint64_t QueryDigest(const World& world, const Rect& rect) {
-  return HashWords({world.fingerprint(), std::bit_cast<uint64_t>(rect.x0),
-                    std::bit_cast<uint64_t>(rect.y0), std::bit_cast<uint64_t>(rect.x1),
-                    std::bit_cast<uint64_t>(rect.y1)});
+  return HashWords({world.fingerprint(), CoordinateBits(rect.x0), CoordinateBits(rect.y0),
+                    CoordinateBits(rect.x1), CoordinateBits(rect.y1)});
 }
 
 std::string ToHex(const std::string& bytes) {

@@ -14,7 +14,17 @@ ScallopService::ScallopService(const ServerConfig& config, const WorldRegistry& 
       engine_(engine),
       request_pool_(request_pool),
       metrics_(metrics),
-      in_flight_(config.max_in_flight) {}
+      in_flight_(config.max_in_flight, "max_in_flight"),
+      streams_in_flight_(config.max_streams_in_flight, "max_streams_in_flight") {}
+
+grpc::Status ScallopService::CheckNearestRegions(int64_t regions, const char* field,
+                                                 const char* advice) const {
+  if (regions <= config_.max_nearest_regions) return grpc::Status::OK;
+  return {grpc::StatusCode::INVALID_ARGUMENT,
+          std::string(field) + ": lie in " + std::to_string(regions) +
+              " distinct regions of 16 min_distance, at most " +
+              std::to_string(config_.max_nearest_regions) + " (max_nearest_regions); " + advice};
+}
 
 grpc::ServerUnaryReactor* ScallopService::RunUnary(grpc::CallbackServerContext* context,
                                                    const char* method, UnaryWork work) {

@@ -54,8 +54,8 @@ class ScallopService final : public v1::Scallop::CallbackService {
   grpc::ServerBidiReactor<v1::FollowRequest, v1::FollowResponse>* Follow(
       grpc::CallbackServerContext* context) override;
 
-  // Calls admitted and not yet finished, for the metrics.
-  int requests_in_flight() const { return in_flight_.in_flight(); }
+  // Calls admitted and not yet finished (unary and streaming), for the metrics.
+  int requests_in_flight() const { return in_flight_.in_flight() + streams_in_flight_.in_flight(); }
 
  private:
   friend class StreamPointsReactor;
@@ -78,9 +78,22 @@ class ScallopService final : public v1::Scallop::CallbackService {
 
   // GetPoints' answer; with may_block false, nullopt when the rectangle's
   // regions are not all cached (nothing is generated or waited on then).
+  // With may_block, generation stops early once `stop` returns true.
   std::optional<grpc::Status> AnswerGetPoints(const v1::GetPointsRequest& request,
                                               v1::GetPointsResponse& response, RequestLog& log,
-                                              bool may_block);
+                                              bool may_block,
+                                              const std::function<bool()>& stop = nullptr);
+
+  // INVALID_ARGUMENT naming `field` when a Nearest or NoiseGrid call's
+  // positions lie in more than max_nearest_regions distinct regions (what
+  // their cost grows with); `advice` says how to stay within it.
+  grpc::Status CheckNearestRegions(int64_t regions, const char* field, const char* advice) const;
+
+  // True once the call's client has cancelled or its deadline has passed:
+  // what long work polls so that it stops for a client that has gone.
+  static std::function<bool()> StopWhenGone(grpc::CallbackServerContext* context) {
+    return [context] { return context->IsCancelled(); };
+  }
 
   // The world and rectangle a query names, resolved, logged and checked
   // against `max_area` (named `limit_name` in errors): the prelude of every
@@ -109,7 +122,8 @@ class ScallopService final : public v1::Scallop::CallbackService {
   NearestLookup nearest_lookup_{engine_};
   boost::asio::thread_pool& request_pool_;
   RequestMetrics* metrics_;
-  InFlightLimit in_flight_;
+  InFlightLimit in_flight_;          // unary calls (max_in_flight)
+  InFlightLimit streams_in_flight_;  // StreamPoints and Follow (max_streams_in_flight)
 };
 
 }  // namespace scallop::server

@@ -42,6 +42,12 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
                                     "max_noise_grid_samples",
                                     "max_follow_area",
                                     "follow_stall_seconds",
+                                    "follow_idle_seconds",
+                                    "stream_stall_seconds",
+                                    "max_streams_in_flight",
+                                    "max_nearest_regions",
+                                    "max_metrics_connections",
+                                    "reuse_port",
                                     "metrics_listen",
                                     "log_level"};
   std::string key;
@@ -69,6 +75,12 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
     read("max_noise_grid_samples", config.max_noise_grid_samples);
     read("max_follow_area", config.max_follow_area);
     read("follow_stall_seconds", config.follow_stall_seconds);
+    read("follow_idle_seconds", config.follow_idle_seconds);
+    read("stream_stall_seconds", config.stream_stall_seconds);
+    read("max_streams_in_flight", config.max_streams_in_flight);
+    read("max_nearest_regions", config.max_nearest_regions);
+    read("max_metrics_connections", config.max_metrics_connections);
+    read("reuse_port", config.reuse_port);
     read("grace_seconds", config.grace_seconds);
     read("drain_seconds", config.drain_seconds);
     read("log_level", config.log_level);
@@ -141,15 +153,30 @@ Status ValidateConfig(const ServerConfig& config) {
     }
   }
   if (config.max_in_flight < 1) return InvalidArgument("max_in_flight: must be >= 1");
+  if (config.max_streams_in_flight < 1) {
+    return InvalidArgument("max_streams_in_flight: must be >= 1");
+  }
+  if (config.max_metrics_connections < 1 || config.max_metrics_connections > 1024) {
+    return InvalidArgument("max_metrics_connections: must be in 1..1024");
+  }
   // The same 3 MB bound as pages: answers fit gRPC's default receive limit.
   if (config.max_nearest_batch < 1 || config.max_nearest_batch > (1 << 16)) {
     return InvalidArgument("max_nearest_batch: must be in 1..65536");
   }
-  if (config.max_noise_grid_samples < 1 || config.max_noise_grid_samples > (1 << 19)) {
-    return InvalidArgument("max_noise_grid_samples: must be in 1..524288");
+  // 8 bytes a sample: 2^19 samples was 37 bytes over 4 MiB with the envelope.
+  if (config.max_noise_grid_samples < 1 || config.max_noise_grid_samples > 500000) {
+    return InvalidArgument("max_noise_grid_samples: must be in 1..500000");
   }
-  if (!(config.follow_stall_seconds > 0 && config.follow_stall_seconds <= 3600)) {
-    return InvalidArgument("follow_stall_seconds: must be in (0, 3600]");
+  // 2^20 regions of cold grids is about 12 GB of them: far past any budget.
+  if (config.max_nearest_regions < 1 || config.max_nearest_regions > (1 << 20)) {
+    return InvalidArgument("max_nearest_regions: must be in 1..1048576");
+  }
+  for (const auto& [name, value] : {std::pair{"follow_stall_seconds", config.follow_stall_seconds},
+                                    {"follow_idle_seconds", config.follow_idle_seconds},
+                                    {"stream_stall_seconds", config.stream_stall_seconds}}) {
+    if (!(value > 0 && value <= 3600)) {
+      return InvalidArgument(std::string(name) + ": must be in (0, 3600]");
+    }
   }
   if (!(config.grace_seconds >= 0 && config.grace_seconds <= 3600)) {
     return InvalidArgument("grace_seconds: must be in [0, 3600]");

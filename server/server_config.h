@@ -20,14 +20,30 @@ struct ServerConfig {
   double max_query_area = 1e6;             // GetPoints, in d^2 (about 850k points)
   double max_stream_area = 1e8;            // StreamPoints, in d^2
   double max_verify_area = 1e6;            // Verify, in d^2 (about 3.5 s on two cores)
-  int max_in_flight = 64;                  // concurrent requests before RESOURCE_EXHAUSTED
+  int max_in_flight = 64;                  // concurrent unary calls before RESOURCE_EXHAUSTED
+  // Streaming calls count apart, so idle streams cannot take every unary
+  // slot and a burst of unary calls cannot starve the streams.
+  int max_streams_in_flight = 32;
   // 24 bytes in and 48 out a position: 2^16 positions is 3 MB of answer.
-  int32_t max_nearest_batch = 1 << 16;       // positions per Nearest call
-  int64_t max_noise_grid_samples = 1 << 19;  // width * height per NoiseGrid call (4 MB)
-  double max_follow_area = 1e5;              // Follow viewport grown by keep_margin, in d^2
-  double follow_stall_seconds = 10;          // a Follow client not reading is dropped after this
-  double grace_seconds = 10;                 // in-flight requests get this long after SIGTERM
-  double drain_seconds = 0;                  // NOT_SERVING this long before refusing new calls
+  int32_t max_nearest_batch = 1 << 16;  // positions per Nearest call
+  // width * height per NoiseGrid call: 8 bytes a sample, 500,000 is 4 MB,
+  // under gRPC's default 4 MiB (4,194,304 bytes) with room for the envelope.
+  int64_t max_noise_grid_samples = 500000;
+  // Distinct regions a Nearest call's positions (or a NoiseGrid's samples)
+  // may lie in. A cold region costs a search grid, about 2.5 ms on two
+  // threads: 4,096 regions is about 10 s cold, a 1,024 d square.
+  int64_t max_nearest_regions = 4096;
+  double max_follow_area = 1e5;      // Follow viewport grown by keep_margin, in d^2
+  double follow_stall_seconds = 10;  // a Follow client not reading is dropped after this
+  double follow_idle_seconds = 300;  // a Follow client sending no update is dropped after this
+  double stream_stall_seconds = 10;  // a StreamPoints client not reading is dropped after this
+  // Connections the metrics listener serves at once; more are closed at once.
+  int max_metrics_connections = 16;
+  // Share the listening port with other processes (SO_REUSEPORT). Off: a
+  // second server on a port in use fails to start instead of splitting calls.
+  bool reuse_port = false;
+  double grace_seconds = 10;  // in-flight requests get this long after SIGTERM
+  double drain_seconds = 0;   // NOT_SERVING this long before refusing new calls
   // debug, info (a line per call), warn (failed calls only), error or off.
   std::string log_level = "info";
   // Key for page tokens. Empty: derived from the world set (see page_token.h).

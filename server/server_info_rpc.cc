@@ -20,6 +20,11 @@ grpc::ServerUnaryReactor* ScallopService::GetServerInfo(grpc::CallbackServerCont
     limits.set_max_nearest_batch(config_.max_nearest_batch);
     limits.set_max_noise_grid_samples(config_.max_noise_grid_samples);
     limits.set_max_follow_area(config_.max_follow_area);
+    limits.set_max_nearest_regions(config_.max_nearest_regions);
+    limits.set_max_streams_in_flight(config_.max_streams_in_flight);
+    limits.set_stream_stall_seconds(config_.stream_stall_seconds);
+    limits.set_follow_stall_seconds(config_.follow_stall_seconds);
+    limits.set_follow_idle_seconds(config_.follow_idle_seconds);
     response->set_default_world(worlds_.default_name());
     for (const std::string& name : worlds_.names()) response->add_world_names(name);
     return grpc::Status::OK;

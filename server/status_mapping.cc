@@ -13,6 +13,8 @@ grpc::Status ToGrpcStatus(const Status& status) {
       return {grpc::StatusCode::OUT_OF_RANGE, status.message()};
     case StatusCode::kResourceExhausted:
       return {grpc::StatusCode::RESOURCE_EXHAUSTED, status.message()};
+    case StatusCode::kCancelled:
+      return {grpc::StatusCode::CANCELLED, status.message()};
     case StatusCode::kInternal:
       break;
   }

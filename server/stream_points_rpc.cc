@@ -1,13 +1,15 @@
 // StreamPoints: a large rectangle one region at a time. The next chunk is
 // computed only when the previous write is done (OnWriteDone), so a slow
 // reader holds back the server instead of filling its memory, and a cancelled
-// or expired call stops the work at the next chunk.
+// or expired call stops the work at the next chunk. A chunk not taken within
+// stream_stall_seconds ends the call (DEADLINE_EXCEEDED), freeing its slot.
 #include <boost/asio/post.hpp>
 
 #include "admitted_stream.h"
 #include "scallop/plane/query_rect.h"
 #include "scallop/plane/region_layout.h"
 #include "scallop_service.h"
+#include "stall_timer.h"
 #include "status_mapping.h"
 #include "world_messages.h"
 
@@ -17,9 +19,12 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
  public:
   StreamPointsReactor(ScallopService& service, grpc::CallbackServerContext* context,
                       const v1::StreamPointsRequest& request)
-      : AdmittedStream(service.in_flight_, "StreamPoints", service.metrics_),
+      : AdmittedStream(service.streams_in_flight_, "StreamPoints", service.metrics_),
         service_(service),
-        context_(context) {
+        context_(context),
+        stall_seconds_(service.config_.stream_stall_seconds),
+        stall_message_(std::make_shared<const std::string>(StallStatus().error_message())),
+        timer_(context) {
     if (!Admit()) return;
     if (grpc::Status status = Prepare(request); !status.ok()) {
       FinishWith(status);
@@ -29,8 +34,11 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
   }
 
   void OnWriteDone(bool ok) override {
+    timer_.Disarm();
     if (!ok) {
-      FinishWith({grpc::StatusCode::CANCELLED, "stream: the client went away"});
+      FinishWith(timer_.fired()
+                     ? StallStatus()
+                     : grpc::Status(grpc::StatusCode::CANCELLED, "stream: the client went away"));
       return;
     }
     ScheduleNextChunk();
@@ -39,6 +47,12 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
   void OnDone() override { delete this; }
 
  private:
+  grpc::Status StallStatus() const {
+    return {grpc::StatusCode::DEADLINE_EXCEEDED,
+            "stream: the client read nothing for " + SecondsText(stall_seconds_) +
+                " s (stream_stall_seconds); resume from the last region received"};
+  }
+
   grpc::Status Prepare(const v1::StreamPointsRequest& request) {
     if (grpc::Status status = service_.ResolveQuery(request, service_.config_.max_stream_area,
                                                     "max_stream_area", log_, world_, rect_);
@@ -85,6 +99,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
       chunk_.set_region_i(key.i);
       chunk_.set_region_j(key.j);
       log_.add_points(static_cast<int64_t>(points->ids.size()));
+      timer_.Arm(stall_seconds_, stall_message_);
       StartWrite(&chunk_);
       return;
     }
@@ -92,6 +107,9 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
 
   ScallopService& service_;
   grpc::CallbackServerContext* context_;
+  const double stall_seconds_;
+  const std::shared_ptr<const std::string> stall_message_;
+  StallTimer timer_;  // watches the pending write
   World world_;
   Rect rect_;
   RegionRange range_;

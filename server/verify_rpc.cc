@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "region_warmup.h"
 #include "scallop/plane/world_verifier.h"
 #include "scallop_service.h"
 #include "status_mapping.h"
@@ -13,7 +14,7 @@ namespace scallop::server {
 grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* context,
                                                  const v1::VerifyRequest* request,
                                                  v1::VerifyResponse* response) {
-  return RunUnary(context, "Verify", [this, request, response](RequestLog& log) {
+  return RunUnary(context, "Verify", [this, context, request, response](RequestLog& log) {
     World world;
     Rect rect;
     if (grpc::Status status =
@@ -21,10 +22,20 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
         !status.ok()) {
       return status;
     }
-    StatusOr<VerifyReport> report = VerifyWorldRect(
-        engine_, world, rect, {.max_area = config_.max_verify_area, .name = "max_verify_area"});
-    if (!report.ok()) return ToGrpcStatus(report.status());
+    // The rectangle and its halo generated a block at a time, so a client
+    // that goes stops the generation (the verifier itself runs to its end).
+    // A rectangle the rule refuses is left to VerifyWorldRect to report.
+    const QueryLimit limit{.max_area = config_.max_verify_area, .name = "max_verify_area"};
     const double d = world.min_distance(), halo = 2 * d;
+    if (const Rect grown = Grown(rect, halo);
+        CheckQueryRect(world, grown, limit, "rect+halo").ok()) {
+      if (grpc::Status status = WarmRegions(engine_, world, grown, StopWhenGone(context));
+          !status.ok()) {
+        return status;
+      }
+    }
+    StatusOr<VerifyReport> report = VerifyWorldRect(engine_, world, rect, limit);
+    if (!report.ok()) return ToGrpcStatus(report.status());
     const double max_abs =
         std::max({std::abs(rect.x0), std::abs(rect.x1), std::abs(rect.y0), std::abs(rect.y1)}) +
         halo;

@@ -1,6 +1,7 @@
 // Resolution of a request's world: inline, by name, or the default.
 #include "world_registry.h"
 
+#include "client_text.h"
 #include "status_mapping.h"
 #include "world_messages.h"
 
@@ -19,8 +20,9 @@ grpc::Status WorldRegistry::ResolveName(const std::string& name, ResolvedWorld& 
     std::string known;
     for (const auto& [known_name, world] : worlds_)
       known += (known.empty() ? "" : ", ") + known_name;
-    return {grpc::StatusCode::NOT_FOUND,
-            "world_name: no world named '" + name + "' on this server (configured: " + known + ")"};
+    // The name is the client's: escaped and cut, as any client text.
+    return {grpc::StatusCode::NOT_FOUND, "world_name: no world named " + QuotedClientText(name) +
+                                             " on this server (configured: " + known + ")"};
   }
   resolved = {found->second, name};
   return grpc::Status::OK;

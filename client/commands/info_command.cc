@@ -56,7 +56,12 @@ int RunInfo(const InfoArguments& arguments) {
                                     {"max_in_flight", limits.max_in_flight()},
                                     {"max_nearest_batch", limits.max_nearest_batch()},
                                     {"max_noise_grid_samples", limits.max_noise_grid_samples()},
-                                    {"max_follow_area", limits.max_follow_area()}}},
+                                    {"max_follow_area", limits.max_follow_area()},
+                                    {"max_nearest_regions", limits.max_nearest_regions()},
+                                    {"max_streams_in_flight", limits.max_streams_in_flight()},
+                                    {"stream_stall_seconds", limits.stream_stall_seconds()},
+                                    {"follow_stall_seconds", limits.follow_stall_seconds()},
+                                    {"follow_idle_seconds", limits.follow_idle_seconds()}}},
                                   {"default_world", info.default_world()},
                                   {"worlds", names},
                                   {"world",
@@ -76,10 +81,16 @@ int RunInfo(const InfoArguments& arguments) {
             << "max query area      " << limits.max_query_area() << " d^2 (GetPoints)\n"
             << "max stream area     " << limits.max_stream_area() << " d^2 (StreamPoints)\n"
             << "max verify area     " << limits.max_verify_area() << " d^2 (Verify)\n"
-            << "max in flight       " << limits.max_in_flight() << " requests\n"
+            << "max in flight       " << limits.max_in_flight() << " unary calls\n"
+            << "max streams         " << limits.max_streams_in_flight() << " streaming calls\n"
             << "max nearest batch   " << limits.max_nearest_batch() << " positions\n"
             << "max noise grid      " << limits.max_noise_grid_samples() << " samples\n"
+            << "max nearest regions " << limits.max_nearest_regions()
+            << " regions (Nearest, NoiseGrid)\n"
             << "max follow area     " << limits.max_follow_area() << " d^2 (Follow)\n"
+            << "stall / idle        " << limits.stream_stall_seconds() << " s (StreamPoints), "
+            << limits.follow_stall_seconds() << " s / " << limits.follow_idle_seconds()
+            << " s (Follow)\n"
             << "default world       " << info.default_world() << '\n'
             << "worlds             ";
   for (const std::string& name : names) std::cout << ' ' << name;

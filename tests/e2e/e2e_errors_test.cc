@@ -189,11 +189,12 @@ TEST_F(E2eErrorsTest, VerifyLimitsItsAreaAndReportsAPass) {
   ExpectStillServing();
 }
 
-TEST(E2eLoadSheddingTest, RequestsBeyondMaxInFlightGetResourceExhausted) {
-  auto server = ScallopdProcess::Start({"--max-in-flight", "1", "--threads", "1"});
+TEST(E2eLoadSheddingTest, StreamsBeyondMaxStreamsInFlightGetResourceExhausted) {
+  auto server = ScallopdProcess::Start(
+      {"--max-in-flight", "1", "--max-streams-in-flight", "1", "--threads", "1"});
   ASSERT_NE(server, nullptr);
   client::ScallopClient client = server->Client();
-  // Hold the only slot with a slow stream read one chunk at a time.
+  // Hold the only stream slot with a slow stream read one chunk at a time.
   v1::StreamPointsRequest slow;
   *slow.mutable_world() = WorldToMessage(ValidWorld({.seed = 2}));
   *slow.mutable_rect() = RectToMessage({0, 0, 4000, 4000});
@@ -205,11 +206,12 @@ TEST(E2eLoadSheddingTest, RequestsBeyondMaxInFlightGetResourceExhausted) {
     });
   });
   while (!holding) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  // Streams and unary calls have their own slots: the stream takes none of
+  // the unary one.
   v1::GetPointsResponse response;
-  const grpc::Status shed = client.GetPoints(Request(WorldSpec{}, {0, 0, 5, 5}), response);
-  EXPECT_EQ(shed.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
-  EXPECT_NE(shed.error_message().find("max_in_flight"), std::string::npos);
-  // Streams are shed the same way, and give back no slot they never had.
+  const grpc::Status unary = client.GetPoints(Request(WorldSpec{}, {0, 0, 5, 5}), response);
+  EXPECT_TRUE(unary.ok()) << client::DescribeStatus(unary);
+  // Other streams are shed, and give back no slot they never had.
   v1::StreamPointsRequest second = slow;
   *second.mutable_rect() = RectToMessage({0, 0, 5, 5});
   int chunks = 0;
@@ -218,7 +220,7 @@ TEST(E2eLoadSheddingTest, RequestsBeyondMaxInFlightGetResourceExhausted) {
     return true;
   });
   EXPECT_EQ(shed_stream.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
-  EXPECT_NE(shed_stream.error_message().find("max_in_flight"), std::string::npos);
+  EXPECT_NE(shed_stream.error_message().find("max_streams_in_flight"), std::string::npos);
   EXPECT_EQ(chunks, 0);
   {
     client::FollowSession follow(client);
@@ -227,18 +229,49 @@ TEST(E2eLoadSheddingTest, RequestsBeyondMaxInFlightGetResourceExhausted) {
     *update.mutable_viewport() = RectToMessage({0, 0, 5, 5});
     const grpc::Status shed_follow = follow.Update(update, [](const v1::FollowResponse&) {});
     EXPECT_EQ(shed_follow.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
-    EXPECT_NE(shed_follow.error_message().find("max_in_flight"), std::string::npos);
+    EXPECT_NE(shed_follow.error_message().find("max_streams_in_flight"), std::string::npos);
   }
   release = true;
   holder.join();
   // The slot is free again once the stream has ended.
   grpc::Status status;
   for (int attempt = 0; attempt < 100; ++attempt) {
-    status = client.GetPoints(Request(WorldSpec{}, {0, 0, 5, 5}), response);
+    chunks = 0;
+    status = client.StreamPoints(second, [&](const v1::PointsChunk&) { return true; });
     if (status.ok()) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   EXPECT_TRUE(status.ok()) << client::DescribeStatus(status);
+}
+
+TEST(E2eLoadSheddingTest, UnaryCallsBeyondMaxInFlightGetResourceExhausted) {
+  auto server = ScallopdProcess::Start({"--max-in-flight", "1", "--threads", "1"});
+  ASSERT_NE(server, nullptr);
+  client::ScallopClient client = server->Client();
+  // A cold Verify of the largest area holds the only unary slot for seconds
+  // on one thread; the event waited for is a refusal while it runs.
+  v1::VerifyRequest slow;
+  *slow.mutable_world() = WorldToMessage(ValidWorld({.seed = 3}));
+  *slow.mutable_rect() = RectToMessage({0, 0, 1000, 1000});
+  std::atomic<bool> verified{false};
+  std::thread holder([&] {
+    v1::VerifyResponse report;
+    // Retried while our own GetPoints holds the slot at the moment it arrives.
+    while (client.Verify(slow, report).error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
+    }
+    verified = true;
+  });
+  grpc::Status shed;
+  v1::GetPointsResponse response;
+  while (!verified && shed.ok()) {
+    shed = client.GetPoints(Request(WorldSpec{}, {0, 0, 5, 5}), response);
+  }
+  holder.join();
+  EXPECT_EQ(shed.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED)
+      << "the Verify ended before any call was refused";
+  EXPECT_NE(shed.error_message().find("max_in_flight"), std::string::npos);
+  const grpc::Status after = client.GetPoints(Request(WorldSpec{}, {0, 0, 5, 5}), response);
+  EXPECT_TRUE(after.ok()) << client::DescribeStatus(after);
 }
 
 }  // namespace

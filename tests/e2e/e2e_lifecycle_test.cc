@@ -174,5 +174,20 @@ TEST(E2eLifecycleTest, CallsOutlivingTheGracePeriodAreCutAndTheServerStillExitsZ
   EXPECT_FALSE(stream_status.ok());
 }
 
+// Issue 20: gRPC shares ports by default (SO_REUSEPORT), so a second server
+// on a port in use started silently and took half the connections. It must
+// refuse, unless both ask to share.
+TEST(E2eLifecycleTest, ASecondServerOnAPortInUseRefusesUnlessAskedToShare) {
+  auto first = ScallopdProcess::Start({});
+  ASSERT_NE(first, nullptr);
+  auto second = ScallopdProcess::Start({}, first->address());
+  EXPECT_TRUE(second == nullptr) << "started on " << first->address() << ", already in use";
+
+  auto sharing = ScallopdProcess::Start({"--reuse-port"});
+  ASSERT_NE(sharing, nullptr);
+  auto sharing_too = ScallopdProcess::Start({"--reuse-port"}, sharing->address());
+  EXPECT_NE(sharing_too, nullptr);
+}
+
 }  // namespace
 }  // namespace scallop::testing

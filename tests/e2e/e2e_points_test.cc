@@ -195,6 +195,28 @@ TEST_F(E2ePointsTest, ConcurrentCallsForTheSameColdRegionsAgree) {
   }
 }
 
+// Issue 20: -0 and +0 name the same rectangle, so a token minted for one
+// pages the other (the old server refused it as made for another rect).
+TEST_F(E2ePointsTest, APageTokenForZeroPagesNegativeZero) {
+  client::ScallopClient client = server_->Client();
+  auto request = RequestFor<v1::GetPointsRequest>(ValidWorld({.seed = 51}), {0, 0, 40, 40});
+  request.set_page_size(100);
+  v1::GetPointsResponse first;
+  ASSERT_TRUE(client.GetPoints(request, first).ok());
+  ASSERT_FALSE(first.next_page_token().empty());
+  auto negative = RequestFor<v1::GetPointsRequest>(ValidWorld({.seed = 51}), {-0.0, -0.0, 40, 40});
+  ASSERT_TRUE(std::signbit(negative.rect().x0()));
+  negative.set_page_size(100);
+  negative.set_page_token(first.next_page_token());
+  v1::GetPointsResponse second;
+  const grpc::Status status = client.GetPoints(negative, second);
+  ASSERT_TRUE(status.ok()) << client::DescribeStatus(status);
+  request.set_page_token(first.next_page_token());
+  v1::GetPointsResponse expected;
+  ASSERT_TRUE(client.GetPoints(request, expected).ok());
+  EXPECT_EQ(second.points().ids(0), expected.points().ids(0));
+}
+
 TEST(E2eReplicasTest, TwoServersAndARestartGiveTheSamePointsAndAcceptEachOthersTokens) {
   const Rect rect{-100, -60, 60, 100};
   auto first = ScallopdProcess::Start(kServerArguments);

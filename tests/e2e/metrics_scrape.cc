@@ -1,3 +1,4 @@
+// The tests' HTTP client (Boost.Beast, blocking) and Prometheus text parser.
 #include "metrics_scrape.h"
 
 #include <boost/asio/ip/tcp.hpp>
@@ -10,19 +11,32 @@ namespace scallop::testing {
 namespace http = boost::beast::http;
 using tcp = boost::asio::ip::tcp;
 
-HttpAnswer Fetch(const std::string& host_port, http::verb verb, const std::string& target) {
+HttpAnswer Fetch(const std::string& host_port, http::verb verb, const std::string& target,
+                 std::chrono::milliseconds timeout) {
   const size_t colon = host_port.rfind(':');
   boost::asio::io_context context;
   tcp::resolver resolver(context);
   boost::beast::tcp_stream stream(context);
-  stream.connect(resolver.resolve(host_port.substr(0, colon), host_port.substr(colon + 1)));
+  // Each step asynchronous, so that the stream's timeout bounds them all:
+  // a blocking read waits for ever on a server that accepted and hung.
+  boost::beast::error_code error;
+  auto step = [&](auto start) {
+    start();
+    context.restart();
+    context.run();
+    if (error) throw boost::system::system_error(error);
+  };
+  auto done = [&](boost::beast::error_code result, auto&&...) { error = result; };
+  stream.expires_after(timeout);
+  const auto endpoints = resolver.resolve(host_port.substr(0, colon), host_port.substr(colon + 1));
+  step([&] { stream.async_connect(endpoints, done); });
   http::request<http::empty_body> request(verb, target, 11);
   request.set(http::field::host, host_port);
-  http::write(stream, request);
+  step([&] { http::async_write(stream, request, done); });
   boost::beast::flat_buffer buffer;
   http::response_parser<http::string_body> parser;
   parser.skip(verb == http::verb::head);  // a HEAD answer has a length but no body
-  http::read(stream, buffer, parser);
+  step([&] { http::async_read(stream, buffer, parser, done); });
   const http::response<http::string_body>& response = parser.get();
   return {static_cast<int>(response.result_int()), std::string(response[http::field::content_type]),
           response.body()};

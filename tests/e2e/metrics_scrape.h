@@ -3,6 +3,7 @@
 #pragma once
 
 #include <boost/beast/http/verb.hpp>
+#include <chrono>
 #include <map>
 #include <string>
 
@@ -14,9 +15,11 @@ struct HttpAnswer {
   std::string body;
 };
 
-// One request to HOST:PORT; throws on a transport error (a test failure).
+// One request to HOST:PORT; throws on a transport error (a test failure),
+// including no answer within `timeout` (a server that accepted and hung).
 HttpAnswer Fetch(const std::string& host_port, boost::beast::http::verb verb,
-                 const std::string& target);
+                 const std::string& target,
+                 std::chrono::milliseconds timeout = std::chrono::seconds(30));
 
 // "name{labels} value" lines keyed by "name{labels}"; comments skipped.
 std::map<std::string, double> ParseExposition(const std::string& text);

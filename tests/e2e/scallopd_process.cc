@@ -40,14 +40,17 @@ std::string ReadAddressLine(int fd, std::chrono::milliseconds timeout) {
 
 }  // namespace
 
-std::unique_ptr<ScallopdProcess> ScallopdProcess::Start(const std::vector<std::string>& arguments) {
+std::unique_ptr<ScallopdProcess> ScallopdProcess::Start(const std::vector<std::string>& arguments,
+                                                        const std::string& listen) {
   std::unique_ptr<ScallopdProcess> process(new ScallopdProcess());
   char log_template[] = "/tmp/scallopd-test-XXXXXX";
   const int log_fd = mkstemp(log_template);
   process->log_path_ = log_template;
   int out[2];
   if (log_fd < 0 || pipe(out) != 0) return nullptr;
-  std::vector<std::string> argv_strings{SCALLOPD_PATH, "--listen", "127.0.0.1:0"};
+  const char* under_test = std::getenv("SCALLOPD_UNDER_TEST");
+  std::vector<std::string> argv_strings{under_test != nullptr ? under_test : SCALLOPD_PATH,
+                                        "--listen", listen};
   argv_strings.insert(argv_strings.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
   for (std::string& s : argv_strings) argv.push_back(s.data());
@@ -114,6 +117,17 @@ std::string ScallopdProcess::Log() const {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+std::string ScallopdProcess::WaitForLog(const std::string& text,
+                                        std::chrono::milliseconds timeout) const {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  std::string log = Log();
+  while (log.find(text) == std::string::npos && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    log = Log();
+  }
+  return log;
 }
 
 }  // namespace scallop::testing

@@ -14,9 +14,12 @@ namespace scallop::testing {
 
 class ScallopdProcess {
  public:
-  // Starts SCALLOPD_PATH with `arguments` plus --listen 127.0.0.1:0 and waits
-  // up to 20 s for SERVING. Null (with the reason on stderr) if it fails.
-  static std::unique_ptr<ScallopdProcess> Start(const std::vector<std::string>& arguments);
+  // Starts SCALLOPD_PATH (or $SCALLOPD_UNDER_TEST, to run the tests against
+  // another build, e.g. to see a new test fail on the old server) with
+  // `arguments` plus --listen `listen`, and waits up to 20 s for SERVING.
+  // Null (with the reason on stderr) if it fails.
+  static std::unique_ptr<ScallopdProcess> Start(const std::vector<std::string>& arguments,
+                                                const std::string& listen = "127.0.0.1:0");
   ~ScallopdProcess();
 
   const std::string& address() const { return address_; }
@@ -32,6 +35,9 @@ class ScallopdProcess {
   int WaitForExit(std::chrono::milliseconds timeout);
   // Everything it wrote to stderr (its log) so far.
   std::string Log() const;
+  // The log once it holds `text` (a call's line is written when the call
+  // ends), or as it is after `timeout`.
+  std::string WaitForLog(const std::string& text, std::chrono::milliseconds timeout) const;
 
  private:
   ScallopdProcess() = default;

@@ -10,7 +10,16 @@
 
 namespace scallop {
 
-enum class StatusCode { kOk, kInvalidArgument, kOutOfRange, kResourceExhausted, kInternal };
+// kCancelled: the caller asked a long computation to stop (its client went
+// away or its deadline passed), so no answer was made.
+enum class StatusCode {
+  kOk,
+  kInvalidArgument,
+  kOutOfRange,
+  kResourceExhausted,
+  kCancelled,
+  kInternal
+};
 
 class Status {
  public:
@@ -32,6 +41,9 @@ inline Status InvalidArgument(std::string message) {
 }
 inline Status OutOfRange(std::string message) {
   return {StatusCode::kOutOfRange, std::move(message)};
+}
+inline Status Cancelled(std::string message) {
+  return {StatusCode::kCancelled, std::move(message)};
 }
 
 // A value or the Status that explains why there is none.

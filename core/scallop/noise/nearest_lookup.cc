@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "scallop/base/number_text.h"
 #include "scallop/noise/cell_value.h"
 #include "scallop/random/rng.h"
 
@@ -69,6 +70,16 @@ size_t CallSlotOf(RegionKey key, size_t slot_count) {
       Mix64(static_cast<uint64_t>(key.i) * 0x9e3779b97f4a7c15ULL ^ static_cast<uint64_t>(key.j)) &
       (slot_count - 1));
 }
+
+// Brute-force answers between polls of the caller's stop: each is an engine
+// query, so a stop waits for at most this many of them.
+constexpr size_t kAnswersPerStopPoll = 64;
+
+Status StopStatus() {
+  return Cancelled("nearest: stopped by the caller (cancelled or past deadline)");
+}
+
+bool StopNow(const StopRequested& stop) { return stop && stop(); }
 
 NearestPoint FromTwoNearest(const TwoNearest& best) {
   return {.id = best.id1,
@@ -138,14 +149,23 @@ Status NearestLookup::ValidatePosition(const World& world, Vec2 position, size_t
     if (!std::isfinite(value)) return InvalidArgument(field + ": must be finite");
     if (std::abs(value) > limit) {
       return OutOfRange(field +
-                        ": |value| must be at most 2^32 * min_distance = " + std::to_string(limit));
+                        ": |value| must be at most 2^32 * min_distance = " + NumberText(limit));
     }
   }
   return Status::Ok();
 }
 
+int64_t NearestLookup::CountRegions(const World& world, std::span<const Vec2> positions) {
+  const RegionLayout layout(world.min_distance());
+  std::vector<RegionKey> keys;
+  keys.reserve(positions.size());
+  for (const Vec2& p : positions) keys.push_back(layout.RegionOf(p.x, p.y));
+  std::sort(keys.begin(), keys.end());
+  return std::unique(keys.begin(), keys.end()) - keys.begin();
+}
+
 Status NearestLookup::Nearest(const World& world, std::span<const Vec2> positions,
-                              std::span<NearestPoint> results) {
+                              std::span<NearestPoint> results, const StopRequested& stop) {
   if (results.size() != positions.size()) {
     return InvalidArgument("results: must have one entry per position");
   }
@@ -167,12 +187,14 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   };
   if (options_.method == NearestMethod::kBruteForce) {
     for (size_t k = 0; k < positions.size(); ++k) {
+      if (k % kAnswersPerStopPoll == 0 && StopNow(stop)) return StopStatus();
       if (Status status = answer_by_brute_force(k, positions[k]); !status.ok()) return status;
     }
   } else {
     std::unique_ptr<Scratch> scratch = TakeScratch();
     std::vector<GridHandle> grids;
-    if (Status status = AssignGrids(world, positions, grids, scratch->grid_of); !status.ok()) {
+    if (Status status = AssignGrids(world, positions, grids, scratch->grid_of, stop);
+        !status.ok()) {
       return status;
     }
     // Positions grouped by grid (a counting sort, stable), so each grid is
@@ -193,6 +215,7 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
       sorted[next[grid_of[k]]++] = {positions[k], static_cast<uint32_t>(k)};
     }
     for (size_t g = 0; g < grids.size(); ++g) {
+      if (StopNow(stop)) return StopStatus();
       const NearestSearchGrid& grid = *grids[g];
       for (uint32_t j = starts[g]; j < starts[g + 1]; ++j) {
         TwoNearest best;
@@ -201,6 +224,8 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
           continue;
         }
         ++fallbacks;
+        // A fallback queries the engine, possibly cold: poll before each.
+        if (StopNow(stop)) return StopStatus();
         if (Status status = answer_by_brute_force(sorted[j].index, sorted[j].position);
             !status.ok()) {
           return status;
@@ -216,7 +241,8 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
 }
 
 Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> positions,
-                                  std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of) {
+                                  std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of,
+                                  const StopRequested& stop) {
   const RegionLayout layout(world.min_distance());
   const double inverse_side = 1.0 / layout.side();
   struct CallSlot {
@@ -244,6 +270,8 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
     if (!slot->used || slot->key != key) {
       // With every probed slot taken, the last is reused: a region met
       // again then gets a second entry, harmless since the grid is shared.
+      // A grid may cost a cold generation: the place to notice a stop.
+      if (StopNow(stop)) return StopStatus();
       StatusOr<GridHandle> grid = Grid(world, key);
       if (!grid.ok()) return grid.status();
       *slot = {key, static_cast<uint32_t>(grids.size()), true};

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <list>
 #include <memory>
 #include <mutex>
@@ -21,7 +22,9 @@ namespace scallop {
 // The basis at one position. "Nearest" orders points by the squared distance
 // dx*dx + dy*dy computed in doubles (dx = x - point.x), ties by smaller id,
 // so every replica agrees to the bit; f1 and f2 are the square roots of the
-// first two (correctly rounded, hence exact functions of the points).
+// first two (correctly rounded, hence exact functions of the points). The
+// bounds on f1 and f2 hold at least 2 d inside the precision limit; nearer,
+// f1 < (1 + sqrt 2) d (1 + tolerance) (docs/noise.md, "At the limit").
 struct NearestPoint {
   uint64_t id = 0;         // nearest point's id (point_id.h)
   Vec2 position;           // nearest point
@@ -41,6 +44,10 @@ struct NearestLookupOptions {
   int64_t cache_bytes = int64_t{64} << 20;
   NearestMethod method = NearestMethod::kGrid;
 };
+
+// Polled during long calls; true asks the call to stop with kCancelled (a
+// server passes its client's cancellation and deadline). Null: never stops.
+using StopRequested = std::function<bool()>;
 
 struct NearestLookupStats {
   int64_t lookups = 0;       // positions answered
@@ -69,11 +76,21 @@ class NearestLookup {
   // one PlaneEngine::Points query of 24 d x 24 d, plus generation when cold.
   // Memory: about 28 bytes a position besides `results`, to group by region;
   // kept for later calls (up to 8 calls' worth, batches up to 2^20).
+  // Scattered positions cost a grid each (milliseconds when cold), so the
+  // cost is bounded by the distinct regions the positions lie in, not by
+  // their number: callers bound those. `stop` is polled before every grid
+  // is built or read and before brute-force answers, so an abandoned call
+  // ends within one grid's work with kCancelled (results then unspecified).
   Status Nearest(const World& world, std::span<const Vec2> positions,
-                 std::span<NearestPoint> results);
+                 std::span<NearestPoint> results, const StopRequested& stop = nullptr);
 
   // The checks Nearest applies to one position; `index` names it in the message.
   static Status ValidatePosition(const World& world, Vec2 position, size_t index);
+
+  // How many distinct regions (region_layout.h) the positions lie in: what
+  // bounds Nearest's cost. O(n log n), about 28 bytes a position.
+  // REQUIRES: every position passes ValidatePosition.
+  static int64_t CountRegions(const World& world, std::span<const Vec2> positions);
 
   NearestLookupStats Stats() const;
 
@@ -99,7 +116,8 @@ class NearestLookup {
   // The grid each position is answered by: grids[grid_of[k]] for position k
   // (grid_of may be longer than positions; the rest is unspecified).
   Status AssignGrids(const World& world, std::span<const Vec2> positions,
-                     std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of);
+                     std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of,
+                     const StopRequested& stop);
   // The grid of `region`, from the cache or built (outside the mutex: two
   // threads may build the same grid at once, and both get identical grids).
   StatusOr<GridHandle> Grid(const World& world, RegionKey region);

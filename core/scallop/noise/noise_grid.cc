@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "scallop/plane/region_layout.h"
+
 namespace scallop {
 namespace {
 
@@ -13,6 +15,19 @@ namespace {
 // batch limit, so a call's buffers are those of an ordinary request (about
 // 100 bytes a sample with the positions and results here).
 constexpr int kSamplesPerCall = 1 << 16;
+
+// Distinct region indices of origin + k * step, k in [0, count): the
+// coordinates grow with k, so a new index is one that differs from the last.
+int64_t DistinctRegionIndices(const RegionLayout& layout, double origin, int count, double step) {
+  int64_t distinct = 0;
+  int64_t last = 0;
+  for (int k = 0; k < count; ++k) {
+    const int64_t index = layout.IndexOf(NoiseSampleCoordinate(origin, k, step));
+    if (k == 0 || index != last) ++distinct;
+    last = index;
+  }
+  return distinct;
+}
 
 }  // namespace
 
@@ -68,8 +83,15 @@ Status ValidateNoiseGrid(const World& world, const NoiseGridSpec& spec, int64_t 
   return Status::Ok();
 }
 
+int64_t NoiseGridRegions(const World& world, const NoiseGridSpec& spec) {
+  const RegionLayout layout(world.min_distance());
+  return DistinctRegionIndices(layout, spec.origin.x, spec.width, spec.step) *
+         DistinctRegionIndices(layout, spec.origin.y, spec.height, spec.step);
+}
+
 StatusOr<NoiseImage> EvaluateNoiseGrid(NearestLookup& lookup, const World& world,
-                                       const NoiseGridSpec& spec, int64_t max_samples) {
+                                       const NoiseGridSpec& spec, int64_t max_samples,
+                                       const StopRequested& stop) {
   if (Status status = ValidateNoiseGrid(world, spec, max_samples); !status.ok()) return status;
   NoiseImage image{.width = spec.width, .height = spec.height, .values = {}, .ids = {}};
   const size_t samples = static_cast<size_t>(spec.width) * spec.height;
@@ -94,7 +116,9 @@ StatusOr<NoiseImage> EvaluateNoiseGrid(NearestLookup& lookup, const World& world
       }
     }
     results.resize(positions.size());
-    if (Status status = lookup.Nearest(world, positions, results); !status.ok()) return status;
+    if (Status status = lookup.Nearest(world, positions, results, stop); !status.ok()) {
+      return status;
+    }
     const size_t start = static_cast<size_t>(first_row) * spec.width;
     for (size_t k = 0; k < results.size(); ++k) {
       const NearestPoint& n = results[k];

@@ -51,8 +51,15 @@ Status ValidateNoiseGrid(const World& world, const NoiseGridSpec& spec, int64_t 
 
 // The channel at every sample. Cost: that of NearestLookup::Nearest on
 // width * height positions, in batches of whole rows of up to 65,536 samples
-// (memory: the image plus about 100 bytes a sample of one batch).
+// (memory: the image plus about 100 bytes a sample of one batch); bounded by
+// the regions the samples lie in (NoiseGridRegions). `stop` as in Nearest.
 StatusOr<NoiseImage> EvaluateNoiseGrid(NearestLookup& lookup, const World& world,
-                                       const NoiseGridSpec& spec, int64_t max_samples);
+                                       const NoiseGridSpec& spec, int64_t max_samples,
+                                       const StopRequested& stop = nullptr);
+
+// How many distinct regions (region_layout.h) the grid's samples lie in: the
+// distinct region columns of its x coordinates times the distinct region rows
+// of its y coordinates. O(width + height). REQUIRES: ValidateNoiseGrid ok.
+int64_t NoiseGridRegions(const World& world, const NoiseGridSpec& spec);
 
 }  // namespace scallop
