@@ -14,8 +14,8 @@
 #include <random>
 #include <thread>
 
-#include "load_report.h"
-#include "load_tile_plan.h"
+#include "bench/load_report.h"
+#include "bench/load_tile_plan.h"
 #include "scallop_client.h"
 #include "world_messages.h"
 

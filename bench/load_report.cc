@@ -1,5 +1,5 @@
 // Summarizing a load run and printing it as text, JSON or a TSV row.
-#include "load_report.h"
+#include "bench/load_report.h"
 
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // The load generator's tile placement: the cold lattice and the warm square.
-#include "load_tile_plan.h"
+#include "bench/load_tile_plan.h"
 
 #include <cmath>
 

@@ -13,8 +13,8 @@
 #include <cstring>
 #include <iostream>
 
-#include "load_tile_plan.h"
-#include "null_server_responses.h"
+#include "bench/load_tile_plan.h"
+#include "bench/null_server_responses.h"
 #include "scallop/v1/scallop.grpc.pb.h"
 
 namespace scallop::load {

@@ -1,11 +1,11 @@
 // Building and serializing the null server's GetPoints responses.
-#include "null_server_responses.h"
+#include "bench/null_server_responses.h"
 
 #include <grpcpp/impl/codegen/proto_utils.h>
 
 #include <stdexcept>
 
-#include "load_tile_plan.h"
+#include "bench/load_tile_plan.h"
 #include "scallop/plane/plane_engine.h"
 #include "scallop/v1/scallop.pb.h"
 #include "world_messages.h"

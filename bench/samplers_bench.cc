@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "allocation_counter.h"
+#include "bench/allocation_counter.h"
 #include "scallop/sampling/sampler.h"
 
 namespace scallop {
@@ -44,15 +44,15 @@ void BM_Sampler(benchmark::State& state, Algorithm algorithm) {
   // Peak heap while sampling, output included, per point produced.
   state.counters["peak_bytes_per_point"] =
       static_cast<double>(peak_bytes) / static_cast<double>(produced);
-  state.counters["points_per_second"] =
-      benchmark::Counter(static_cast<double>(produced), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["points_per_second"] = benchmark::Counter(
+      static_cast<double>(produced), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-#define SCALLOP_SAMPLER_BENCH(name, algorithm, max_points)                               \
-  BENCHMARK_CAPTURE(BM_Sampler, name, algorithm)                                         \
-      ->RangeMultiplier(10)                                                               \
-      ->Range(1000, max_points)                                                           \
-      ->Unit(benchmark::kMillisecond)                                                     \
+#define SCALLOP_SAMPLER_BENCH(name, algorithm, max_points) \
+  BENCHMARK_CAPTURE(BM_Sampler, name, algorithm)           \
+      ->RangeMultiplier(10)                                \
+      ->Range(1000, max_points)                            \
+      ->Unit(benchmark::kMillisecond)                      \
       ->MinTime(0.5)
 
 SCALLOP_SAMPLER_BENCH(bridson_baseline, Algorithm::kBridson, 1000000);

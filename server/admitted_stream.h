@@ -7,8 +7,8 @@
 
 #include <string>
 
-#include "in_flight_limit.h"
-#include "request_log.h"
+#include "server/in_flight_limit.h"
+#include "server/request_log.h"
 
 namespace scallop::server {
 

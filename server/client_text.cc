@@ -1,5 +1,5 @@
 // Escaping and cutting client text for messages and logs.
-#include "client_text.h"
+#include "server/client_text.h"
 
 namespace scallop::server {
 

@@ -1,6 +1,6 @@
 // DescribeWorld: a world's parameters with defaults filled in, and its geometry.
 #include "scallop/plane/region_layout.h"
-#include "scallop_service.h"
+#include "server/scallop_service.h"
 #include "world_messages.h"
 
 namespace scallop::server {
@@ -10,7 +10,8 @@ grpc::ServerUnaryReactor* ScallopService::DescribeWorld(grpc::CallbackServerCont
                                                         v1::DescribeWorldResponse* response) {
   return RunUnary(context, "DescribeWorld", [this, request, response](RequestLog& log) {
     ResolvedWorld resolved;
-    if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
+    if (grpc::Status status = shared_.worlds.Resolve(*request, resolved); !status.ok())
+      return status;
     const World& world = resolved.world;
     log.set_world(world.Describe());
     const RegionLayout layout(world.min_distance());

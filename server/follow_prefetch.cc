@@ -1,5 +1,5 @@
 // FollowPrefetch: one job per call drains the latest predicted area.
-#include "follow_prefetch.h"
+#include "server/follow_prefetch.h"
 
 #include <boost/asio/post.hpp>
 

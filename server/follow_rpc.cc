@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "admitted_stream.h"
-#include "follow_prefetch.h"
 #include "scallop/plane/viewport_tracker.h"
-#include "scallop_service.h"
-#include "stall_timer.h"
-#include "status_mapping.h"
+#include "server/admitted_stream.h"
+#include "server/follow_prefetch.h"
+#include "server/scallop_service.h"
+#include "server/stall_timer.h"
+#include "server/status_mapping.h"
 #include "world_messages.h"
 
 namespace scallop::server {
@@ -42,12 +42,12 @@ void SetKey(RegionKey key, v1::RegionKey& message) {
 class FollowReactor final
     : public AdmittedStream<grpc::ServerBidiReactor<v1::FollowRequest, v1::FollowResponse>> {
  public:
-  FollowReactor(ScallopService& service, grpc::CallbackServerContext* context)
-      : AdmittedStream(service.streams_in_flight_, "Follow", service.metrics_),
-        service_(service),
+  FollowReactor(ServiceContext& shared, grpc::CallbackServerContext* context)
+      : AdmittedStream(shared.streams_in_flight, "Follow", shared.metrics),
+        shared_(shared),
         context_(context),
-        stall_seconds_(service.config_.follow_stall_seconds),
-        idle_seconds_(service.config_.follow_idle_seconds),
+        stall_seconds_(shared.config.follow_stall_seconds),
+        idle_seconds_(shared.config.follow_idle_seconds),
         stall_message_(std::make_shared<const std::string>(StallStatus().error_message())),
         idle_message_(std::make_shared<const std::string>(IdleStatus().error_message())),
         timer_(context) {
@@ -66,7 +66,7 @@ class FollowReactor final
                      : grpc::Status::OK);
       return;
     }
-    boost::asio::post(service_.request_pool_, [this] { AnswerUpdate(); });
+    boost::asio::post(shared_.request_pool, [this] { AnswerUpdate(); });
   }
 
   void OnWriteDone(bool ok) override {
@@ -113,7 +113,7 @@ class FollowReactor final
     const std::vector<RegionKey> evicted = tracker_->Update(update);
     // Generation (if the prefetch did not get there first) happens here,
     // rank by rank in parallel on the engine's pool.
-    StatusOr<PlanePoints> in_view = service_.engine_.Points(world_, update.viewport);
+    StatusOr<PlanePoints> in_view = shared_.engine.Points(world_, update.viewport);
     if (!in_view.ok()) {
       FinishWith(ToGrpcStatus(in_view.status()));
       return;
@@ -147,13 +147,13 @@ class FollowReactor final
   grpc::Status PrepareUpdate() {
     if (!tracker_) {
       ResolvedWorld resolved;
-      if (grpc::Status status = service_.worlds_.Resolve(request_, resolved); !status.ok()) {
+      if (grpc::Status status = shared_.worlds.Resolve(request_, resolved); !status.ok()) {
         return status;
       }
       world_ = resolved.world;
       log_.set_world(world_.Describe());
       tracker_.emplace(world_);
-      prefetch_.emplace(service_.engine_, service_.request_pool_, world_);
+      prefetch_.emplace(shared_.engine, shared_.request_pool, world_);
     } else if (request_.world_choice_case() != v1::FollowRequest::WORLD_CHOICE_NOT_SET) {
       return {grpc::StatusCode::INVALID_ARGUMENT,
               "world: set only in the first message of a Follow call (world or world_name)"};
@@ -164,7 +164,7 @@ class FollowReactor final
     }
     log_.set_rect(RectFromMessage(request_.viewport()));
     return ToGrpcStatus(ValidateViewportUpdate(world_, UpdateFromMessage(request_),
-                                               service_.config_.max_follow_area));
+                                               shared_.config.max_follow_area));
   }
 
   void WriteNextOrRead() {
@@ -177,7 +177,7 @@ class FollowReactor final
     StartWrite(&response);
   }
 
-  ScallopService& service_;
+  ServiceContext& shared_;
   grpc::CallbackServerContext* context_;
   const double stall_seconds_;
   const double idle_seconds_;
@@ -194,7 +194,7 @@ class FollowReactor final
 
 grpc::ServerBidiReactor<v1::FollowRequest, v1::FollowResponse>* ScallopService::Follow(
     grpc::CallbackServerContext* context) {
-  return new FollowReactor(*this, context);
+  return new FollowReactor(shared_, context);
 }
 
 }  // namespace scallop::server

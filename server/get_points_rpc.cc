@@ -3,9 +3,9 @@
 // rectangle's regions are all cached, on the request pool otherwise.
 #include <algorithm>
 
-#include "region_warmup.h"
-#include "scallop_service.h"
-#include "status_mapping.h"
+#include "server/region_warmup.h"
+#include "server/scallop_service.h"
+#include "server/status_mapping.h"
 #include "world_messages.h"
 
 namespace scallop::server {
@@ -30,22 +30,22 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
                                                             const std::function<bool()>& stop) {
   World world;
   Rect rect;
-  if (grpc::Status status =
-          ResolveQuery(request, config_.max_query_area, "max_query_area", log, world, rect);
+  if (grpc::Status status = shared_.ResolveQuery(request, shared_.config.max_query_area,
+                                                 "max_query_area", log, world, rect);
       !status.ok()) {
     return status;
   }
   if (request.page_size() < 0) {
     return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                         "page_size: must be >= 0 (0 means max_page_size, " +
-                            std::to_string(config_.max_page_size) + ")");
+                            std::to_string(shared_.config.max_page_size) + ")");
   }
   const size_t page_size = request.page_size() == 0
-                               ? config_.max_page_size
-                               : std::min(request.page_size(), config_.max_page_size);
+                               ? shared_.config.max_page_size
+                               : std::min(request.page_size(), shared_.config.max_page_size);
   uint64_t offset = 0;
   if (!request.page_token().empty()) {
-    StatusOr<uint64_t> decoded = page_tokens_.Decode(request.page_token(), world, rect);
+    StatusOr<uint64_t> decoded = shared_.page_tokens.Decode(request.page_token(), world, rect);
     if (!decoded.ok()) return ToGrpcStatus(decoded.status());
     offset = *decoded;
   }
@@ -54,11 +54,13 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
   std::vector<RegionHandle> regions;
   if (may_block) {
     // Cold regions a block at a time, so a client that goes stops the work.
-    if (grpc::Status status = WarmRegions(engine_, world, rect, stop); !status.ok()) return status;
-    StatusOr<std::vector<RegionHandle>> resolved = engine_.Regions(world, rect);
+    if (grpc::Status status = WarmRegions(shared_.engine, world, rect, stop); !status.ok())
+      return status;
+    StatusOr<std::vector<RegionHandle>> resolved = shared_.engine.Regions(world, rect);
     if (!resolved.ok()) return ToGrpcStatus(resolved.status());
     regions = std::move(*resolved);
-  } else if (std::optional<std::vector<RegionHandle>> cached = engine_.CachedRegions(world, rect)) {
+  } else if (std::optional<std::vector<RegionHandle>> cached =
+                 shared_.engine.CachedRegions(world, rect)) {
     regions = std::move(*cached);
   } else {
     return std::nullopt;
@@ -79,7 +81,7 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
     return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                         "page_token: points beyond the end of the rectangle");
   }
-  if (end < total) response.set_next_page_token(page_tokens_.Encode(world, rect, end));
+  if (end < total) response.set_next_page_token(shared_.page_tokens.Encode(world, rect, end));
   *response.mutable_world() = WorldToMessage(world);
   log.add_points(points.ids_size());
   return grpc::Status::OK;

@@ -16,13 +16,13 @@
 #include <iostream>
 #include <thread>
 
-#include "malloc_tuning.h"
-#include "metrics_http_server.h"
-#include "page_token.h"
-#include "request_metrics.h"
-#include "scallop_service.h"
-#include "server_config.h"
-#include "world_registry.h"
+#include "server/malloc_tuning.h"
+#include "server/metrics_http_server.h"
+#include "server/page_token.h"
+#include "server/request_metrics.h"
+#include "server/scallop_service.h"
+#include "server/server_config.h"
+#include "server/world_registry.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // The metrics endpoint: an Asio acceptor with a connection cap, and one
 // keep-alive HTTP session a connection.
-#include "metrics_http_server.h"
+#include "server/metrics_http_server.h"
 
 #include <spdlog/spdlog.h>
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "scallop_service.h"
-#include "status_mapping.h"
+#include "server/scallop_service.h"
+#include "server/status_mapping.h"
 #include "world_messages.h"
 
 namespace scallop::server {
@@ -16,7 +16,8 @@ grpc::ServerUnaryReactor* ScallopService::Nearest(grpc::CallbackServerContext* c
                                                   v1::NearestResponse* response) {
   return RunUnary(context, "Nearest", [this, context, request, response](RequestLog& log) {
     ResolvedWorld resolved;
-    if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
+    if (grpc::Status status = shared_.worlds.Resolve(*request, resolved); !status.ok())
+      return status;
     const World& world = resolved.world;
     log.set_world(world.Describe());
     const v1::Positions& message = request->positions();
@@ -26,11 +27,11 @@ grpc::ServerUnaryReactor* ScallopService::Nearest(grpc::CallbackServerContext* c
                               " entries and ys " + std::to_string(message.ys_size()) +
                               "; they must have the same length");
     }
-    if (message.xs_size() > config_.max_nearest_batch) {
-      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                          "positions: " + std::to_string(message.xs_size()) +
-                              " positions, at most " + std::to_string(config_.max_nearest_batch) +
-                              " (max_nearest_batch)");
+    if (message.xs_size() > shared_.config.max_nearest_batch) {
+      return grpc::Status(
+          grpc::StatusCode::INVALID_ARGUMENT,
+          "positions: " + std::to_string(message.xs_size()) + " positions, at most " +
+              std::to_string(shared_.config.max_nearest_batch) + " (max_nearest_batch)");
     }
     std::vector<Vec2> positions(message.xs_size());
     for (int k = 0; k < message.xs_size(); ++k) {
@@ -40,13 +41,14 @@ grpc::ServerUnaryReactor* ScallopService::Nearest(grpc::CallbackServerContext* c
       }
     }
     if (grpc::Status status =
-            CheckNearestRegions(NearestLookup::CountRegions(world, positions), "positions",
-                                "split scattered positions into several calls");
+            shared_.CheckNearestRegions(NearestLookup::CountRegions(world, positions), "positions",
+                                        "split scattered positions into several calls");
         !status.ok()) {
       return status;
     }
     std::vector<NearestPoint> results(positions.size());
-    if (Status status = nearest_lookup_.Nearest(world, positions, results, StopWhenGone(context));
+    if (Status status =
+            shared_.nearest_lookup.Nearest(world, positions, results, StopWhenGone(context));
         !status.ok()) {
       return ToGrpcStatus(status);
     }

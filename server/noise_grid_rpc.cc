@@ -4,8 +4,8 @@
 #include <optional>
 
 #include "scallop/noise/noise_grid.h"
-#include "scallop_service.h"
-#include "status_mapping.h"
+#include "server/scallop_service.h"
+#include "server/status_mapping.h"
 #include "world_messages.h"
 
 namespace scallop::server {
@@ -35,7 +35,8 @@ grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext*
                                                     v1::NoiseGridResponse* response) {
   return RunUnary(context, "NoiseGrid", [this, context, request, response](RequestLog& log) {
     ResolvedWorld resolved;
-    if (grpc::Status status = worlds_.Resolve(*request, resolved); !status.ok()) return status;
+    if (grpc::Status status = shared_.worlds.Resolve(*request, resolved); !status.ok())
+      return status;
     const World& world = resolved.world;
     log.set_world(world.Describe());
     const std::optional<NoiseChannel> channel = ChannelFromMessage(request->channel());
@@ -49,7 +50,7 @@ grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext*
                              .width = request->width(),
                              .height = request->height(),
                              .channel = *channel};
-    if (Status status = ValidateNoiseGrid(world, spec, config_.max_noise_grid_samples);
+    if (Status status = ValidateNoiseGrid(world, spec, shared_.config.max_noise_grid_samples);
         !status.ok()) {
       // The core names the limit's value; say which setting it is.
       if (status.message().starts_with("width * height")) {
@@ -58,13 +59,14 @@ grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext*
       return ToGrpcStatus(status);
     }
     if (grpc::Status status =
-            CheckNearestRegions(NoiseGridRegions(world, spec), "step: the samples",
-                                "use a smaller step or fewer samples");
+            shared_.CheckNearestRegions(NoiseGridRegions(world, spec), "step: the samples",
+                                        "use a smaller step or fewer samples");
         !status.ok()) {
       return status;
     }
-    StatusOr<NoiseImage> image = EvaluateNoiseGrid(
-        nearest_lookup_, world, spec, config_.max_noise_grid_samples, StopWhenGone(context));
+    StatusOr<NoiseImage> image =
+        EvaluateNoiseGrid(shared_.nearest_lookup, world, spec,
+                          shared_.config.max_noise_grid_samples, StopWhenGone(context));
     if (!image.ok()) return ToGrpcStatus(image.status());
     *response->mutable_world() = WorldToMessage(world);
     response->set_width(image->width);

@@ -1,5 +1,5 @@
 // Page token encoding: a little-endian body, an HMAC-SHA256 tag, hex text.
-#include "page_token.h"
+#include "server/page_token.h"
 
 #include <openssl/crypto.h>
 #include <openssl/evp.h>

@@ -1,10 +1,10 @@
 // Region warm-up by blocks of regions, with a stop check between blocks.
-#include "region_warmup.h"
+#include "server/region_warmup.h"
 
 #include <algorithm>
 
 #include "scallop/plane/query_rect.h"
-#include "status_mapping.h"
+#include "server/status_mapping.h"
 
 namespace scallop::server {
 namespace {

@@ -1,5 +1,5 @@
 // Request log lines, through spdlog (stderr).
-#include "request_log.h"
+#include "server/request_log.h"
 
 #include <spdlog/spdlog.h>
 

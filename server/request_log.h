@@ -10,8 +10,8 @@
 #include <optional>
 #include <string>
 
-#include "request_metrics.h"
 #include "scallop/geometry/rect.h"
+#include "server/request_metrics.h"
 
 namespace scallop::server {
 

@@ -1,4 +1,4 @@
-#include "request_metrics.h"
+#include "server/request_metrics.h"
 
 #include <fmt/format.h>
 

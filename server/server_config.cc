@@ -1,5 +1,5 @@
 // Loading and checking scallopd's configuration (YAML file and --world specs).
-#include "server_config.h"
+#include "server/server_config.h"
 
 #include <yaml-cpp/yaml.h>
 

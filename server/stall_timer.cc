@@ -1,5 +1,5 @@
 // StallTimer: one grpc::Alarm per wait, and the cancellation it fires.
-#include "stall_timer.h"
+#include "server/stall_timer.h"
 
 #include <fmt/format.h>
 

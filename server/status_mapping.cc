@@ -1,5 +1,5 @@
 // Core status codes mapped one to one onto gRPC status codes.
-#include "status_mapping.h"
+#include "server/status_mapping.h"
 
 namespace scallop::server {
 

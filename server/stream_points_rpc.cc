@@ -5,24 +5,24 @@
 // stream_stall_seconds ends the call (DEADLINE_EXCEEDED), freeing its slot.
 #include <boost/asio/post.hpp>
 
-#include "admitted_stream.h"
 #include "scallop/plane/query_rect.h"
 #include "scallop/plane/region_layout.h"
-#include "scallop_service.h"
-#include "stall_timer.h"
-#include "status_mapping.h"
+#include "server/admitted_stream.h"
+#include "server/scallop_service.h"
+#include "server/stall_timer.h"
+#include "server/status_mapping.h"
 #include "world_messages.h"
 
 namespace scallop::server {
 
 class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor<v1::PointsChunk>> {
  public:
-  StreamPointsReactor(ScallopService& service, grpc::CallbackServerContext* context,
+  StreamPointsReactor(ServiceContext& shared, grpc::CallbackServerContext* context,
                       const v1::StreamPointsRequest& request)
-      : AdmittedStream(service.streams_in_flight_, "StreamPoints", service.metrics_),
-        service_(service),
+      : AdmittedStream(shared.streams_in_flight, "StreamPoints", shared.metrics),
+        shared_(shared),
         context_(context),
-        stall_seconds_(service.config_.stream_stall_seconds),
+        stall_seconds_(shared.config.stream_stall_seconds),
         stall_message_(std::make_shared<const std::string>(StallStatus().error_message())),
         timer_(context) {
     if (!Admit()) return;
@@ -54,8 +54,8 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
   }
 
   grpc::Status Prepare(const v1::StreamPointsRequest& request) {
-    if (grpc::Status status = service_.ResolveQuery(request, service_.config_.max_stream_area,
-                                                    "max_stream_area", log_, world_, rect_);
+    if (grpc::Status status = shared_.ResolveQuery(request, shared_.config.max_stream_area,
+                                                   "max_stream_area", log_, world_, rect_);
         !status.ok()) {
       return status;
     }
@@ -65,7 +65,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
   }
 
   void ScheduleNextChunk() {
-    boost::asio::post(service_.request_pool_, [this] { WriteNextChunk(); });
+    boost::asio::post(shared_.request_pool, [this] { WriteNextChunk(); });
   }
 
   // Regions in the order GetPoints returns them (rows, then columns), so the
@@ -88,7 +88,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
       const Rect owned = layout.RegionRect(key);
       const Rect part{std::max(rect_.x0, owned.x0), std::max(rect_.y0, owned.y0),
                       std::min(rect_.x1, owned.x1), std::min(rect_.y1, owned.y1)};
-      StatusOr<PlanePoints> points = service_.engine_.Points(world_, part);
+      StatusOr<PlanePoints> points = shared_.engine.Points(world_, part);
       if (!points.ok()) {
         FinishWith(ToGrpcStatus(points.status()));
         return;
@@ -105,7 +105,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
     }
   }
 
-  ScallopService& service_;
+  ServiceContext& shared_;
   grpc::CallbackServerContext* context_;
   const double stall_seconds_;
   const std::shared_ptr<const std::string> stall_message_;
@@ -119,7 +119,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
 
 grpc::ServerWriteReactor<v1::PointsChunk>* ScallopService::StreamPoints(
     grpc::CallbackServerContext* context, const v1::StreamPointsRequest* request) {
-  return new StreamPointsReactor(*this, context, *request);
+  return new StreamPointsReactor(shared_, context, *request);
 }
 
 }  // namespace scallop::server

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "region_warmup.h"
 #include "scallop/plane/world_verifier.h"
-#include "scallop_service.h"
-#include "status_mapping.h"
+#include "server/region_warmup.h"
+#include "server/scallop_service.h"
+#include "server/status_mapping.h"
 #include "world_messages.h"
 
 namespace scallop::server {
@@ -17,24 +17,24 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
   return RunUnary(context, "Verify", [this, context, request, response](RequestLog& log) {
     World world;
     Rect rect;
-    if (grpc::Status status =
-            ResolveQuery(*request, config_.max_verify_area, "max_verify_area", log, world, rect);
+    if (grpc::Status status = shared_.ResolveQuery(*request, shared_.config.max_verify_area,
+                                                   "max_verify_area", log, world, rect);
         !status.ok()) {
       return status;
     }
     // The rectangle and its halo generated a block at a time, so a client
     // that goes stops the generation (the verifier itself runs to its end).
     // A rectangle the rule refuses is left to VerifyWorldRect to report.
-    const QueryLimit limit{.max_area = config_.max_verify_area, .name = "max_verify_area"};
+    const QueryLimit limit{.max_area = shared_.config.max_verify_area, .name = "max_verify_area"};
     const double d = world.min_distance(), halo = 2 * d;
     if (const Rect grown = Grown(rect, halo);
         CheckQueryRect(world, grown, limit, "rect+halo").ok()) {
-      if (grpc::Status status = WarmRegions(engine_, world, grown, StopWhenGone(context));
+      if (grpc::Status status = WarmRegions(shared_.engine, world, grown, StopWhenGone(context));
           !status.ok()) {
         return status;
       }
     }
-    StatusOr<VerifyReport> report = VerifyWorldRect(engine_, world, rect, limit);
+    StatusOr<VerifyReport> report = VerifyWorldRect(shared_.engine, world, rect, limit);
     if (!report.ok()) return ToGrpcStatus(report.status());
     const double max_abs =
         std::max({std::abs(rect.x0), std::abs(rect.x1), std::abs(rect.y0), std::abs(rect.y1)}) +

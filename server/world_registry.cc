@@ -1,8 +1,8 @@
 // Resolution of a request's world: inline, by name, or the default.
-#include "world_registry.h"
+#include "server/world_registry.h"
 
-#include "client_text.h"
-#include "status_mapping.h"
+#include "server/client_text.h"
+#include "server/status_mapping.h"
 #include "world_messages.h"
 
 namespace scallop::server {

@@ -11,9 +11,9 @@
 #include <thread>
 #include <vector>
 
-#include "nearest_oracle.h"
 #include "scallop/plane/point_id.h"
 #include "scallop/random/rng.h"
+#include "tests/nearest_oracle.h"
 #include "tests/test_worlds.h"
 
 namespace scallop::testing {

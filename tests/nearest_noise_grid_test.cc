@@ -7,9 +7,9 @@
 #include <cmath>
 #include <vector>
 
-#include "nearest_oracle.h"
 #include "scallop/noise/cell_value.h"
 #include "scallop/noise/noise_grid.h"
+#include "tests/nearest_oracle.h"
 #include "tests/test_worlds.h"
 
 namespace scallop::testing {

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <string>
 
-#include "scallopd_process.h"
+#include "tests/e2e/scallopd_process.h"
 #include "world_messages.h"
 
 namespace scallop::testing {

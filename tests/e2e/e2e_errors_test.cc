@@ -8,7 +8,7 @@
 #include <thread>
 
 #include "follow_client.h"
-#include "scallopd_process.h"
+#include "tests/e2e/scallopd_process.h"
 #include "tests/test_worlds.h"
 #include "world_messages.h"
 

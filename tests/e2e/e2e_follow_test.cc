@@ -21,7 +21,7 @@
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/point_id.h"
 #include "scallop/random/rng.h"
-#include "scallopd_process.h"
+#include "tests/e2e/scallopd_process.h"
 #include "tests/test_worlds.h"
 #include "world_messages.h"
 

@@ -9,7 +9,7 @@
 
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "scallop/plane/plane_engine.h"
-#include "scallopd_process.h"
+#include "tests/e2e/scallopd_process.h"
 #include "tests/test_worlds.h"
 #include "world_messages.h"
 

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "scallop/random/rng.h"
-#include "scallopd_process.h"
+#include "tests/e2e/scallopd_process.h"
 #include "tests/test_worlds.h"
 #include "world_messages.h"
 

@@ -12,8 +12,8 @@
 #include <thread>
 #include <vector>
 
-#include "metrics_scrape.h"
-#include "scallopd_process.h"
+#include "tests/e2e/metrics_scrape.h"
+#include "tests/e2e/scallopd_process.h"
 
 namespace scallop::testing {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <sstream>
 
-#include "metrics_scrape.h"
-#include "scallopd_process.h"
+#include "tests/e2e/metrics_scrape.h"
+#include "tests/e2e/scallopd_process.h"
 #include "tests/test_worlds.h"
 #include "world_messages.h"
 

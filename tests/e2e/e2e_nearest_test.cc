@@ -11,7 +11,7 @@
 #include "scallop/noise/nearest_lookup.h"
 #include "scallop/noise/noise_grid.h"
 #include "scallop/random/rng.h"
-#include "scallopd_process.h"
+#include "tests/e2e/scallopd_process.h"
 #include "tests/test_worlds.h"
 #include "world_messages.h"
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
-#include "scallopd_process.h"
+#include "tests/e2e/scallopd_process.h"
 
 namespace scallop::testing {
 namespace {

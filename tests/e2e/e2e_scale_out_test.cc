@@ -8,9 +8,9 @@
 #include <chrono>
 #include <thread>
 
-#include "metrics_scrape.h"
 #include "scallop/random/rng.h"
-#include "scallopd_process.h"
+#include "tests/e2e/metrics_scrape.h"
+#include "tests/e2e/scallopd_process.h"
 #include "tests/test_worlds.h"
 #include "world_messages.h"
 

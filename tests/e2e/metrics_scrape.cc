@@ -1,5 +1,5 @@
 // The tests' HTTP client (Boost.Beast, blocking) and Prometheus text parser.
-#include "metrics_scrape.h"
+#include "tests/e2e/metrics_scrape.h"
 
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/beast/core.hpp>

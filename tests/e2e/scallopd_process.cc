@@ -1,5 +1,5 @@
 // Starting, signalling and reaping scallopd with fork and exec.
-#include "scallopd_process.h"
+#include "tests/e2e/scallopd_process.h"
 
 #include <fcntl.h>
 #include <poll.h>

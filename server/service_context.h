@@ -1,0 +1,91 @@
+// ServiceContext: what every call of the Scallop service shares (its
+// configuration, worlds, page tokens, engine, request pool, admission budgets
+// and metrics), in one small object that each RPC's file reaches directly, so
+// a streaming reactor needs no access to the service's private parts.
+#pragma once
+
+#include <grpcpp/server_context.h>
+
+#include <boost/asio/thread_pool.hpp>
+#include <cstdint>
+#include <functional>
+
+#include "scallop/noise/nearest_lookup.h"
+#include "scallop/plane/plane_engine.h"
+#include "scallop/plane/query_rect.h"
+#include "server/in_flight_limit.h"
+#include "server/page_token.h"
+#include "server/request_log.h"
+#include "server/server_config.h"
+#include "server/status_mapping.h"
+#include "server/world_registry.h"
+#include "world_messages.h"
+
+namespace scallop::server {
+
+class ServiceContext {
+ public:
+  // All references must outlive the context; the pool must outlive every
+  // call. `metrics` (may be null: not recorded) counts every finished call.
+  ServiceContext(const ServerConfig& config, const WorldRegistry& worlds,
+                 const PageTokenCodec& page_tokens, PlaneEngine& engine,
+                 boost::asio::thread_pool& request_pool, RequestMetrics* metrics)
+      : config(config),
+        worlds(worlds),
+        page_tokens(page_tokens),
+        engine(engine),
+        request_pool(request_pool),
+        metrics(metrics),
+        unary_in_flight(config.max_in_flight, "max_in_flight"),
+        streams_in_flight(config.max_streams_in_flight, "max_streams_in_flight") {}
+  ServiceContext(const ServiceContext&) = delete;
+  ServiceContext& operator=(const ServiceContext&) = delete;
+
+  // The world and rectangle a query names, resolved, logged and checked by
+  // the rectangle rule against `max_area` (named `limit_name` in errors):
+  // the prelude of every RPC that reads a rectangle.
+  template <typename Request>
+  grpc::Status ResolveQuery(const Request& request, double max_area, const char* limit_name,
+                            RequestLog& log, World& world, Rect& rect) const {
+    ResolvedWorld resolved;
+    if (grpc::Status status = worlds.Resolve(request, resolved); !status.ok()) return status;
+    world = resolved.world;
+    log.set_world(world.Describe());
+    rect = RectFromMessage(request.rect());
+    log.set_rect(rect);
+    if (!request.has_rect()) {
+      return {grpc::StatusCode::INVALID_ARGUMENT,
+              "rect: required, the half-open rectangle [x0, x1) x [y0, y1)"};
+    }
+    return ToGrpcStatus(CheckQueryRect(world, rect, {.max_area = max_area, .name = limit_name}));
+  }
+
+  // INVALID_ARGUMENT naming `field` when a Nearest or NoiseGrid call's
+  // positions lie in more than max_nearest_regions distinct regions (what
+  // their cost grows with); `advice` says how to stay within it.
+  grpc::Status CheckNearestRegions(int64_t regions, const char* field, const char* advice) const;
+
+  // Calls admitted and not yet finished (unary and streaming), for the metrics.
+  int requests_in_flight() const {
+    return unary_in_flight.in_flight() + streams_in_flight.in_flight();
+  }
+
+  const ServerConfig& config;
+  const WorldRegistry& worlds;
+  const PageTokenCodec& page_tokens;
+  PlaneEngine& engine;
+  boost::asio::thread_pool& request_pool;
+  RequestMetrics* const metrics;
+  // Nearest and NoiseGrid: search grids cached across requests, on engine's regions.
+  NearestLookup nearest_lookup{engine};
+  InFlightLimit unary_in_flight;    // unary calls (max_in_flight)
+  InFlightLimit streams_in_flight;  // StreamPoints and Follow (max_streams_in_flight)
+};
+
+// True once the call's client has cancelled or its deadline has passed: what
+// long work polls so that it stops for a client that has gone.
+inline std::function<bool()> StopWhenGone(grpc::CallbackServerContext* context) {
+  return [context] { return context->IsCancelled(); };
+}
+
+}  // namespace scallop::server
