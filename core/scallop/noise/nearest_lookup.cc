@@ -15,11 +15,6 @@
 namespace scallop {
 namespace {
 
-// Regions -2^28 .. 2^28 - 1 tile [-2^32 d, 2^32 d). A position exactly on
-// the high limit belongs to no region inside the range; its last region's
-// grid reaches 3 d beyond it, so that grid answers it.
-constexpr auto kRegionsPerHalfAxis = static_cast<int64_t>(kPrecisionRangeInD / kRegionSideInD);
-
 // floor(v) as an integer, for |v| < 2^62, without a library call (x86-64
 // without SSE4.1 has no floor instruction).
 int64_t FloorToInt64(double v) {
@@ -34,6 +29,9 @@ int64_t FloorToInt64(double v) {
 // region.
 RegionKey ApproximateRegionOf(Vec2 p, double inverse_side) {
   return {
+      // A position exactly on the high limit belongs to no region inside the
+      // range (kRegionsPerHalfAxis); its last region's grid reaches 3 d beyond
+      // it, so that grid answers it.
       std::clamp(FloorToInt64(p.x * inverse_side), -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1),
       std::clamp(FloorToInt64(p.y * inverse_side), -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1)};
 }
