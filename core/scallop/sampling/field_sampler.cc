@@ -63,13 +63,18 @@ class FieldRun {
   // rx + L |x - q| gives |x - q| < rx / (1 - L); never more than r_max.
   double Reach(double rx) const { return std::min(field_.r_max(), rx * reach_factor_); }
 
+  double Radius(Vec2 x) const {
+    if (stats_ != nullptr) ++stats_->evaluations;
+    return field_.Evaluate(x);
+  }
+
   bool Admissible(Vec2 x, double rx) const {
     return rect_.Contains(x) && !field_.IsMasked(x) && !grid_.Conflicts(x, rx, Reach(rx));
   }
 
   bool TryPlace(Vec2 x) {
     if (!rect_.Contains(x) || field_.IsMasked(x)) return false;
-    const double rx = field_.Evaluate(x);
+    const double rx = Radius(x);
     if (grid_.Conflicts(x, rx, Reach(rx))) return false;
     Place(x, rx);
     return true;
@@ -80,22 +85,40 @@ class FieldRun {
     grid_.Add(x, rx);
   }
 
+  // True when every spot of p + t u, t in [t_lo, t_hi], lies inside some point's own disk
+  // D(q, R(q)), hence in conflict with q whatever R is there: the try can be skipped without
+  // evaluating the field. Only a shortcut (a skipped spot that was free is the sweep's to
+  // fill), so the window is a heuristic 1.5 R(p) around the segment.
+  bool SegmentInOneDisk(const FieldPoint& p, Vec2 u, double t_lo, double t_hi) const {
+    const Vec2 a{p.p.x + t_lo * u.x, p.p.y + t_lo * u.y};
+    const Vec2 b{p.p.x + t_hi * u.x, p.p.y + t_hi * u.y};
+    const Rect box{std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)};
+    return grid_.AnyNear(Grown(box, 1.5 * p.r), [&](const FieldPoint& q) {
+      const double r2 = q.r * q.r;
+      return SquaredDistance(a, q.p) < r2 && SquaredDistance(b, q.p) < r2;
+    });
+  }
+
   // The spot along direction u at the spacing p's curve asks for: t = max(R(p), t*) with t* the
-  // one root of t - R(p + t u) (slope in [1 - L, 1 + L]), found by secant steps kept inside the
-  // slope's bracket, padded. Returns the spot and R there; the caller checks it in doubles.
-  void CurveSpot(const FieldPoint& p, Vec2 u, Vec2* x, double* rx) const {
+  // one root of t - R(p + t u) (slope in [1 - L, 1 + L], so t* <= R(p) / (1 - L)), found by
+  // secant steps kept inside the slope's bracket, padded. Returns false when the spot is
+  // surely in conflict (the bracket lies in one disk); else the spot and R there, which the
+  // caller checks in doubles.
+  bool CurveSpot(const FieldPoint& p, Vec2 u, Vec2* x, double* rx) const {
     double t = p.r;
+    if (SegmentInOneDisk(p, u, Pad(t), Pad(t * reach_factor_))) return false;
     double previous_t = 0.0;
     double previous_f = 0.0;
     for (int iteration = 0;; ++iteration) {
       const double s = Pad(t);
       *x = Vec2{p.p.x + s * u.x, p.p.y + s * u.y};
-      *rx = field_.Evaluate(*x);
+      *rx = Radius(*x);
       const double f = s - *rx;
-      if (f >= 0.0 || iteration == 5) return;
+      if (f >= 0.0 || iteration == 5) return true;
       double step = iteration == 0 ? -f : -f * (t - previous_t) / (f - previous_f);
       const double lo = -f / (1.0 + slope_);
       const double hi = -f / (1.0 - slope_);
+      if (iteration == 0 && SegmentInOneDisk(p, u, Pad(t + lo), Pad(t + hi))) return false;
       step = iteration >= 3 ? hi : std::clamp(step, lo, hi);
       previous_t = t;
       previous_f = f;
@@ -116,8 +139,8 @@ class FieldRun {
         const FieldPoint p = grid_.points()[static_cast<size_t>(index)];
         Vec2 x;
         double rx;
-        CurveSpot(p, UnitAt(start + step * j), &x, &rx);
-        if (Admissible(x, rx)) {
+        if (stats_ != nullptr) ++stats_->curve_spots;
+        if (CurveSpot(p, UnitAt(start + step * j), &x, &rx) && Admissible(x, rx)) {
           Place(x, rx);
           if (stats_ != nullptr) ++stats_->grown;
         }
@@ -149,6 +172,7 @@ class FieldRun {
     for (;;) {
       if (field_.HasMask() && field_.AllMasked(c)) return;
       if (stats_ != nullptr) ++stats_->cells_tested;
+      if (stats_ != nullptr) ++stats_->evaluations;
       const RadiusInterval bounds = field_.Bounds(c);
       if (CoveredByOnePoint(c, bounds.lo, bounds.hi)) return;
       const Vec2 centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1)};

@@ -35,6 +35,8 @@ struct FieldSampleStats {
   int64_t swept = 0;         // points placed by the sweep (seeds of unreached parts, gaps)
   int64_t cells_tested = 0;  // coverage certificates attempted by the sweep
   int64_t leaves = 0;        // finest sweep cells (near-tangent spots), see kFieldLeafFraction
+  int64_t curve_spots = 0;   // spots computed on candidates' curves
+  int64_t evaluations = 0;   // R(x) evaluations, bounds included
 };
 
 // The sweep's finest cell side over r_min: spots in a finest cell whose tested spots are all
