@@ -62,6 +62,8 @@ void BM_FieldSampler(benchmark::State& state) {
       static_cast<double>(stats.evaluations) / static_cast<double>(produced);
   state.counters["spots_per_point"] =
       static_cast<double>(stats.curve_spots) / static_cast<double>(produced);
+  state.counters["leaves_per_point"] =
+      static_cast<double>(stats.leaves) / static_cast<double>(produced);
   state.counters["cells_per_point"] =
       static_cast<double>(stats.cells_tested) / static_cast<double>(produced);
 }
