@@ -87,16 +87,47 @@ class FieldRun {
 
   // True when every spot of p + t u, t in [t_lo, t_hi], lies inside some point's own disk
   // D(q, R(q)), hence in conflict with q whatever R is there: the try can be skipped without
-  // evaluating the field. Only a shortcut (a skipped spot that was free is the sweep's to
-  // fill), so the window is a heuristic 1.5 R(p) around the segment.
+  // evaluating the field. Looks at the candidate's gathered neighbours only; a shortcut, never
+  // needed for exactness.
   bool SegmentInOneDisk(const FieldPoint& p, Vec2 u, double t_lo, double t_hi) const {
     const Vec2 a{p.p.x + t_lo * u.x, p.p.y + t_lo * u.y};
     const Vec2 b{p.p.x + t_hi * u.x, p.p.y + t_hi * u.y};
-    const Rect box{std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)};
-    return grid_.AnyNear(Grown(box, 1.5 * p.r), [&](const FieldPoint& q) {
+    for (const FieldPoint& q : near_) {
       const double r2 = q.r * q.r;
-      return SquaredDistance(a, q.p) < r2 && SquaredDistance(b, q.p) < r2;
+      if (SquaredDistance(a, q.p) < r2 && SquaredDistance(b, q.p) < r2) return true;
+    }
+    return false;
+  }
+
+  // Every point that can conflict with a spot of p's curve: spots lie within
+  // s_max = Pad(R(p) / (1 - L)) of p and have R <= s_max, so their conflicts lie within
+  // Reach(s_max) of them. Gathered once per candidate, so that its tries scan one short array
+  // instead of the grid's cells.
+  void GatherNear(const FieldPoint& p) {
+    spot_limit_ = Pad(p.r * reach_factor_);
+    const double gather = spot_limit_ + Reach(spot_limit_);
+    const double gather2 = gather * gather;
+    near_.clear();
+    grid_.AnyNear(Grown(Rect{p.p.x, p.p.y, p.p.x, p.p.y}, gather), [&](const FieldPoint& q) {
+      if (SquaredDistance(p.p, q.p) <= gather2) near_.push_back(q);
+      return false;
     });
+  }
+
+  // Admissible against the gathered points when the spot is within the gathered range (always,
+  // unless the root search stopped outside its bracket), else against the grid.
+  bool AdmissibleNear(const FieldPoint& p, Vec2 x, double rx) const {
+    if (!(rx <= spot_limit_ && SquaredDistance(p.p, x) <= spot_limit_ * spot_limit_)) {
+      return Admissible(x, rx);
+    }
+    if (!rect_.Contains(x) || field_.IsMasked(x)) return false;
+    for (const FieldPoint& q : near_) {
+      const double dx = x.x - q.p.x;
+      const double dy = x.y - q.p.y;
+      const double m = std::max(rx, q.r);
+      if (dx * dx + dy * dy < m * m) return false;
+    }
+    return true;
   }
 
   // The spot along direction u at the spacing p's curve asks for: t = max(R(p), t*) with t* the
@@ -134,14 +165,15 @@ class FieldRun {
       queue_.pop_back();
       const double start = kTwoPi * rng_.Uniform();
       const double step = kTwoPi / tries_;
+      const FieldPoint p = grid_.points()[static_cast<size_t>(index)];
+      GatherNear(p);
       for (int j = 0; j < tries_; ++j) {
-        // The point is re-read each time: Place may grow the vector.
-        const FieldPoint p = grid_.points()[static_cast<size_t>(index)];
         Vec2 x;
         double rx;
         if (stats_ != nullptr) ++stats_->curve_spots;
-        if (CurveSpot(p, UnitAt(start + step * j), &x, &rx) && Admissible(x, rx)) {
+        if (CurveSpot(p, UnitAt(start + step * j), &x, &rx) && AdmissibleNear(p, x, rx)) {
           Place(x, rx);
+          near_.push_back({x, rx});
           if (stats_ != nullptr) ++stats_->grown;
         }
       }
@@ -244,6 +276,9 @@ class FieldRun {
   double reach_factor_ = 1.0;
   int max_depth_ = 0;
   std::vector<int32_t> queue_;
+  // The current candidate's neighbours (GatherNear) and how far its curve's spots reach.
+  std::vector<FieldPoint> near_;
+  double spot_limit_ = 0.0;
 };
 
 }  // namespace
