@@ -206,6 +206,14 @@ class FieldRun {
       if (stats_ != nullptr) ++stats_->cells_tested;
       if (stats_ != nullptr) ++stats_->evaluations;
       const RadiusInterval bounds = field_.Bounds(c);
+      // One point covers the cell only if its farthest corner, at least half a diagonal away,
+      // is closer than R(q) <= R(centre) + L |q - centre|, i.e. closer than R_hi / (1 - L).
+      // A cell too large for that is split at once: its children test and dart themselves.
+      const double half_diagonal = 0.5 * std::sqrt(c.Width() * c.Width() + c.Height() * c.Height());
+      if (depth < max_depth_ &&
+          half_diagonal >= std::min(field_.r_max(), bounds.hi * reach_factor_)) {
+        break;
+      }
       if (CoveredByOnePoint(c, bounds.lo, bounds.hi)) return;
       const Vec2 centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1)};
       if (depth >= max_depth_) {
