@@ -183,14 +183,20 @@ class FieldRun {
   // A cell is covered when one point's conflict disk holds it whole: its farthest corner is
   // closer than max(R(q), lower bound of R over the cell). Every spot of it is then in conflict
   // with q. The 1e-9 relative margin absorbs the rounding of the corner distances.
+  // A coverer's farthest corner is closer than R_hi / (1 - L) (see Certify), and the centre,
+  // the corners' mean, is no farther from q than that corner: so q lies within that reach of
+  // the centre. The grid cell holding the centre is looked at first, where a coverer usually is.
   bool CoveredByOnePoint(const Rect& c, double r_low, double r_high) const {
     const double reach = std::min(field_.r_max(), r_high * reach_factor_);
-    return grid_.AnyNear(Grown(c, reach), [&](const FieldPoint& q) {
+    const auto covers = [&](const FieldPoint& q) {
       const double dx = std::max(q.p.x - c.x0, c.x1 - q.p.x);
       const double dy = std::max(q.p.y - c.y0, c.y1 - q.p.y);
       const double m = std::max(q.r, r_low);
       return (dx * dx + dy * dy) * (1.0 + 1e-9) < m * m;
-    });
+    };
+    const Rect centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1), 0.5 * (c.x0 + c.x1),
+                      0.5 * (c.y0 + c.y1)};
+    return grid_.AnyNear(centre, covers) || grid_.AnyNear(Grown(centre, reach), covers);
   }
 
   // The spot nearest to x inside the half-open domain (x itself unless on a top or right edge).
