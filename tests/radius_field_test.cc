@@ -235,7 +235,7 @@ void WritePng(const std::string& path, int width, int height, int bit_depth, int
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   const int channels = color_type == PNG_COLOR_TYPE_RGB ? 3 : 1;
-  const size_t row = static_cast<size_t>(width) * channels * std::max(1, bit_depth / 8);
+  const size_t row = (static_cast<size_t>(width) * channels * bit_depth + 7) / 8;
   for (int r = 0; r < height; ++r) {
     png_write_row(png, bytes.data() + r * row);
   }
