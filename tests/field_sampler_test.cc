@@ -197,6 +197,10 @@ TEST(FieldSamplerTest, RejectsBadDomains) {
   EXPECT_EQ(SampleField(options, field).status().code(), StatusCode::kInvalidArgument);
   options.domain = {0.0, 0.0, 1e5, 1e5};
   EXPECT_NE(SampleField(options, field).status().message().find("domain"), std::string::npos);
+  // Long and thin: a small area, but a grid column per r_min along 4e9 r_min.
+  options.domain = {0.0, 0.0, 4e9, 1e-5};
+  EXPECT_NE(SampleField(options, field).status().message().find("domain"), std::string::npos);
+  EXPECT_FALSE(VerifyFieldDomain({}, options.domain, field).ok());
   options.domain = {0.0, 0.0, 1.0, 1.0};
   options.curve_tries = 0;
   EXPECT_NE(SampleField(options, field).status().message().find("curve_tries"), std::string::npos);

@@ -62,6 +62,13 @@ TEST(RadiusFieldTest, RasterIsBilinearBetweenPixelCentres) {
   EXPECT_DOUBLE_EQ(field.Evaluate({112, 150}), 3.0);
   EXPECT_NEAR(field.Evaluate({112, 300}), (5.0 + kR64) / 2.0, 1e-14);
   EXPECT_DOUBLE_EQ(field.Evaluate({1e300, -1e300}), 3.0);
+  const double odd = field.Evaluate({NAN, INFINITY});
+  EXPECT_TRUE(odd >= 1.0 && odd <= 5.0);
+  const RadiusField noise = field_test::NoiseField(1, 1.0, 4.0);
+  for (const Vec2 x : {Vec2{NAN, 0.0}, Vec2{INFINITY, -INFINITY}, Vec2{1e300, 1e-300}}) {
+    const double r = noise.Evaluate(x);
+    EXPECT_TRUE(r >= 1.0 && r <= 4.0) << r;
+  }
   EXPECT_NEAR(field.Slope(), std::sqrt(32.0) / 12.0, 1e-9);
 }
 

@@ -255,8 +255,9 @@ double RadiusField::EvaluateRaster(Vec2 x) const {
   // conversion so that far coordinates cannot overflow; beyond the image the edge holds.
   double u = (x.x - spec_.raster_origin.x) / spec_.pixel_size - 0.5;
   double v = (x.y - spec_.raster_origin.y) / spec_.pixel_size - 0.5;
-  u = std::clamp(u, 0.0, static_cast<double>(w - 1));
-  v = std::clamp(v, 0.0, static_cast<double>(h - 1));
+  // Written so that NaN lands on 0 too: no input reaches the integer conversion out of range.
+  u = u > 0.0 ? std::min(u, static_cast<double>(w - 1)) : 0.0;
+  v = v > 0.0 ? std::min(v, static_cast<double>(h - 1)) : 0.0;
   const double fu = std::floor(u);
   const double fv = std::floor(v);
   const int i0 = static_cast<int>(fu);

@@ -94,7 +94,8 @@ class RadiusField {
   // in a written order (no libm transcendental, no FMA: the build uses -ffp-contract=off).
   // Raster: each pixel's value sits at its centre, bilinear between centres, the edge pixels'
   // values beyond the image; a masked pixel (v = 0) counts as v_max. Cost: constant O(1);
-  // noise ~4 hashes per octave; raster 4 pixel reads.
+  // noise 4 mixes per octave; raster 4 pixel reads. Defined for every input: infinities and
+  // NaN give some value in [r_min, r_max] (never undefined behaviour).
   double Evaluate(Vec2 x) const;
 
   // L with |R(x) - R(y)| <= L |x - y| for all x, y (0 for a constant): noise from the fade's

@@ -36,8 +36,9 @@ inline double QuinticFade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) +
 // most 15/8 * sqrt(2).
 inline double ValueNoiseOctave(uint64_t octave_seed, double x, double y) {
   // Beyond 2^62 lattice units the integer conversion would overflow; the noise is flat there.
-  x = std::clamp(x, -0x1.0p62, 0x1.0p62);
-  y = std::clamp(y, -0x1.0p62, 0x1.0p62);
+  // NaN goes to 0, so no input reaches the conversion out of range.
+  x = x > -0x1.0p62 ? std::min(x, 0x1.0p62) : (x < 0.0 ? -0x1.0p62 : 0.0);
+  y = y > -0x1.0p62 ? std::min(y, 0x1.0p62) : (y < 0.0 ? -0x1.0p62 : 0.0);
   const double fx = std::floor(x);
   const double fy = std::floor(y);
   const auto i = static_cast<int64_t>(fx);

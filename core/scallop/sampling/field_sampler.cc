@@ -307,9 +307,9 @@ Status ValidateFieldSamplerOptions(const FieldSamplerOptions& options, const Rad
   if (std::max({std::abs(r.x0), std::abs(r.x1), std::abs(r.y0), std::abs(r.y1)}) > limit) {
     return OutOfRange("domain coordinates must be within 2^32 field.r_min of the origin");
   }
-  const double cells = (r.Width() / field.r_min()) * (r.Height() / field.r_min());
-  if (!(cells <= kMaxFieldDomainCells)) {
-    return InvalidArgument("domain area / field.r_min^2 must be at most 2.56e8");
+  if (!(FieldDomainCells(r, field.r_min()) <= kMaxFieldDomainCells)) {
+    return InvalidArgument(
+        "domain (width / field.r_min + 2) * (height / field.r_min + 2) must be at most 6.4e7");
   }
   if (options.curve_tries < 1 || options.curve_tries > 64) {
     return InvalidArgument("curve_tries must be in [1, 64]");

@@ -13,9 +13,17 @@
 
 namespace scallop {
 
-// Largest value of area / r_min^2 a field domain may have (the sweep's finest cells and the
-// grid scale with it; about 2^28, a few GiB at the worst).
-inline constexpr double kMaxFieldDomainCells = 256e6;
+// Largest (width / r_min + 2) (height / r_min + 2) a field domain may have: about 64e6 points
+// at most, a few GiB of working memory at the worst, as for the constant-spacing samplers
+// (kMaxSamplerPoints). The + 2 bounds long thin domains too, whose grids would otherwise have
+// a column per r_min however small their area.
+inline constexpr double kMaxFieldDomainCells = 64e6;
+
+// FieldDomainCells(r, r_min) <= kMaxFieldDomainCells is what ValidateFieldSamplerOptions and
+// VerifyFieldDomain require.
+inline double FieldDomainCells(const Rect& r, double r_min) {
+  return (r.Width() / r_min + 2.0) * (r.Height() / r_min + 2.0);
+}
 // Coordinates up to 2^32 r_min from the origin: beyond, rounding of a coordinate (ulp(M)/2)
 // eats the 2^-32 relative padding the growth places points with.
 inline constexpr double kMaxFieldCoordinate = 0x1.0p32;
@@ -44,7 +52,7 @@ struct FieldSampleStats {
 inline constexpr double kFieldLeafFraction = 0x1.0p-30;
 
 // Checks the options against the field: INVALID_ARGUMENT for a non-finite, empty or inverted
-// domain ("domain"), an area above kMaxFieldDomainCells r_min^2 ("domain"), curve_tries outside
+// domain ("domain"), FieldDomainCells above kMaxFieldDomainCells ("domain"), curve_tries outside
 // [1, 64] ("curve_tries"); OUT_OF_RANGE ("domain") for a coordinate beyond
 // kMaxFieldCoordinate r_min.
 Status ValidateFieldSamplerOptions(const FieldSamplerOptions& options, const RadiusField& field);

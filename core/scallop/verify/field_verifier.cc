@@ -9,6 +9,7 @@
 
 #include "scallop/geometry/rect_tiles.h"
 #include "scallop/sampling/field_point_grid.h"
+#include "scallop/sampling/field_sampler.h"
 
 namespace scallop {
 namespace {
@@ -95,8 +96,9 @@ StatusOr<FieldVerifyReport> VerifyFieldDomain(std::span<const Vec2> points, cons
   if (!std::isfinite(options.max_tolerance) || options.max_tolerance < 0.0) {
     return InvalidArgument("max_tolerance must be finite and >= 0");
   }
-  if (!((domain.Width() / field.r_min()) * (domain.Height() / field.r_min()) <= 256e6)) {
-    return InvalidArgument("domain area / field.r_min^2 must be at most 2.56e8");
+  if (!(FieldDomainCells(domain, field.r_min()) <= kMaxFieldDomainCells)) {
+    return InvalidArgument(
+        "domain (width / field.r_min + 2) * (height / field.r_min + 2) must be at most 6.4e7");
   }
   for (const Vec2& p : points) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) {

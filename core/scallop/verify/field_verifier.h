@@ -53,7 +53,7 @@ struct FieldVerifyReport {
 // finest cells' bounds enter gap_bound. G(x) is evaluated against the points within 2 r_max
 // (farther ones cannot make it negative), an overestimate that keeps the bound valid.
 // Rejects (INVALID_ARGUMENT): a non-finite or empty domain, non-finite points, a negative or
-// non-finite tolerance, an area above 2.56e8 r_min^2.
+// non-finite tolerance, a domain beyond kMaxFieldDomainCells (field_sampler.h).
 // Cost: O(N (r_max / r_min)^2) for the pairs, O(cells) for the gaps, a few per point plus
 // ~30 per near-tangent spot. Not CGAL: the max rule's closest violating pair need not be a
 // Delaunay edge, and G's maxima are not Voronoi vertices.
