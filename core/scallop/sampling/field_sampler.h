@@ -63,10 +63,11 @@ Status ValidateFieldSamplerOptions(const FieldSamplerOptions& options, const Rad
 //  - no conflict: for every pair dx^2 + dy^2 >= max(R(p), R(q))^2 (R by RadiusField::Evaluate,
 //    the same bits the verifier computes, so no margin is needed for this check);
 //  - maximal up to a tolerance: every unmasked spot x of the closed domain has a point q with
-//    |x - q| < max(R(x), R(q)) + (1 + L) sqrt(2) 2^-30 r_min, plus a 2^-32 relative padding
-//    of the radii (the growth's placement margin).
-// Cost: O(N) expected for a fixed r_max / r_min; about 16 curve evaluations (2-3 field
-// evaluations each) per point plus the sweep's certificates (docs/performance.md).
+//    |x - q| < max(R(x), R(q)) + (1 + L) sqrt(2) 2^-30 r_min (the sweep certifies coverage
+//    against R itself, so the growth's 2^-32 placement padding does not enter).
+// Cost: O(N) expected for a fixed r_max / r_min; measured at r_max / r_min = 8, per point: 16
+// curve tries, 16.5 field evaluations, 8.3 sweep cells; 150k-190k points a second on this
+// project's machine, 1.4-1.6x the field Bridson below (docs/performance.md).
 // A constant field is sampled by this algorithm too, so its points differ from Sample's A3:
 // worlds with a constant field keep using Sample.
 StatusOr<std::vector<Vec2>> SampleField(const FieldSamplerOptions& options,

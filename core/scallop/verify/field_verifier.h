@@ -16,8 +16,8 @@ namespace scallop {
 
 struct FieldVerifyOptions {
   // maximal_ok is gap_bound < max_tolerance * r_max. The field sampler is maximal up to
-  // (1 + L) sqrt(2) 2^-30 r_min plus a 2^-32 relative padding (field_sampler.h), and this
-  // verifier's own finest cells add (1 + L) 2^-32.5 r_min: together below 3e-9 r_max.
+  // (1 + L) sqrt(2) 2^-30 r_min (field_sampler.h), and this verifier's own finest cells add
+  // (1 + L) 2^-32.5 r_min: together below 3e-9 r_max.
   double max_tolerance = 1e-8;
 };
 
