@@ -1,0 +1,326 @@
+// SampleField: growth along each point's spacing curve (A3's boundary with R from the field),
+// then a sweep of cells that certifies coverage with interval bounds of R, seeding whatever the
+// growth did not reach (mask components, gaps left between curve tries).
+#include "scallop/sampling/field_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scallop/geometry/rect_tiles.h"
+#include "scallop/random/rng.h"
+#include "scallop/sampling/field_point_grid.h"
+
+namespace scallop {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+class FieldRun {
+ public:
+  FieldRun(const FieldSamplerOptions& options, const RadiusField& field, FieldSampleStats* stats)
+      : rect_(options.domain),
+        field_(field),
+        rng_(HashWords({options.seed, 0x4649454c44ULL})),
+        grid_(rect_, GridCell(field)),
+        tries_(options.curve_tries),
+        slope_(field.Slope()),
+        stats_(stats) {
+    const double m =
+        std::max({std::abs(rect_.x0), std::abs(rect_.x1), std::abs(rect_.y0), std::abs(rect_.y1)}) +
+        field.r_max();
+    pad_absolute_ = 8.0 * (std::nextafter(m, INFINITY) - m);
+    reach_factor_ = (1.0 / (1.0 - slope_)) * (1.0 + 1e-9);
+  }
+
+  std::vector<Vec2> Run() {
+    // One uniform seed, so that the growth's order, not the sweep's, shapes the bulk.
+    for (int k = 0; k < 64; ++k) {
+      const Vec2 x{rng_.Uniform(rect_.x0, rect_.x1), rng_.Uniform(rect_.y0, rect_.y1)};
+      if (TryPlace(x)) {
+        Grow();
+        break;
+      }
+    }
+    Sweep();
+    std::vector<Vec2> out;
+    out.reserve(grid_.points().size());
+    for (const FieldPoint& q : grid_.points()) out.push_back(q.p);
+    return out;
+  }
+
+ private:
+  // sqrt(r_min r_max): a dense query scans ~9 cells, a sparse one ~(2 sqrt(ratio))^2 mostly
+  // empty cells; the geometric mean balances the two.
+  static double GridCell(const RadiusField& field) {
+    return std::sqrt(field.r_min() * field.r_max());
+  }
+
+  // The radius, padded so that a point placed at it from p stays at least R apart in doubles
+  // after its coordinates are rounded (as SpacingFor does for a constant d).
+  double Pad(double t) const { return t * (1.0 + 0x1.0p-32) + pad_absolute_; }
+
+  // Beyond this no point can be in conflict with a spot of radius rx: |x - q| < R(q) <=
+  // rx + L |x - q| gives |x - q| < rx / (1 - L); never more than r_max.
+  double Reach(double rx) const { return std::min(field_.r_max(), rx * reach_factor_); }
+
+  double Radius(Vec2 x) const {
+    if (stats_ != nullptr) ++stats_->evaluations;
+    return field_.Evaluate(x);
+  }
+
+  bool Admissible(Vec2 x, double rx) const {
+    return rect_.Contains(x) && !field_.IsMasked(x) && !grid_.Conflicts(x, rx, Reach(rx));
+  }
+
+  bool TryPlace(Vec2 x) {
+    if (!rect_.Contains(x) || field_.IsMasked(x)) return false;
+    const double rx = Radius(x);
+    if (grid_.Conflicts(x, rx, Reach(rx))) return false;
+    Place(x, rx);
+    return true;
+  }
+
+  void Place(Vec2 x, double rx) {
+    queue_.push_back(static_cast<int32_t>(grid_.points().size()));
+    grid_.Add(x, rx);
+  }
+
+  // True when every spot of p + t u, t in [t_lo, t_hi], lies inside some point's own disk
+  // D(q, R(q)), hence in conflict with q whatever R is there: the try can be skipped without
+  // evaluating the field. Looks at the candidate's gathered neighbours only; a shortcut, never
+  // needed for exactness.
+  bool SegmentInOneDisk(const FieldPoint& p, Vec2 u, double t_lo, double t_hi) const {
+    const Vec2 a{p.p.x + t_lo * u.x, p.p.y + t_lo * u.y};
+    const Vec2 b{p.p.x + t_hi * u.x, p.p.y + t_hi * u.y};
+    for (const FieldPoint& q : near_) {
+      const double r2 = q.r * q.r;
+      if (SquaredDistance(a, q.p) < r2 && SquaredDistance(b, q.p) < r2) return true;
+    }
+    return false;
+  }
+
+  // Every point that can conflict with a spot of p's curve: spots lie within
+  // s_max = Pad(R(p) / (1 - L)) of p and have R <= s_max, so their conflicts lie within
+  // Reach(s_max) of them. Gathered once per candidate, so that its tries scan one short array
+  // instead of the grid's cells.
+  void GatherNear(const FieldPoint& p) {
+    spot_limit_ = Pad(p.r * reach_factor_);
+    const double gather = spot_limit_ + Reach(spot_limit_);
+    const double gather2 = gather * gather;
+    near_.clear();
+    grid_.AnyNear(Grown(Rect{p.p.x, p.p.y, p.p.x, p.p.y}, gather), [&](const FieldPoint& q) {
+      if (SquaredDistance(p.p, q.p) <= gather2) near_.push_back(q);
+      return false;
+    });
+  }
+
+  // Admissible against the gathered points when the spot is within the gathered range (always,
+  // unless the root search stopped outside its bracket), else against the grid.
+  bool AdmissibleNear(const FieldPoint& p, Vec2 x, double rx) const {
+    if (!(rx <= spot_limit_ && SquaredDistance(p.p, x) <= spot_limit_ * spot_limit_)) {
+      return Admissible(x, rx);
+    }
+    if (!rect_.Contains(x) || field_.IsMasked(x)) return false;
+    for (const FieldPoint& q : near_) {
+      const double dx = x.x - q.p.x;
+      const double dy = x.y - q.p.y;
+      const double m = std::max(rx, q.r);
+      if (dx * dx + dy * dy < m * m) return false;
+    }
+    return true;
+  }
+
+  // The spot along direction u at the spacing p's curve asks for: t = max(R(p), t*) with t* the
+  // one root of t - R(p + t u) (slope in [1 - L, 1 + L], so t* <= R(p) / (1 - L)), found by
+  // secant steps kept inside the slope's bracket, padded. Returns false when the spot is
+  // surely in conflict (the bracket lies in one disk); else the spot and R there, which the
+  // caller checks in doubles.
+  bool CurveSpot(const FieldPoint& p, Vec2 u, Vec2* x, double* rx) const {
+    double t = p.r;
+    if (SegmentInOneDisk(p, u, Pad(t), Pad(t * reach_factor_))) return false;
+    double previous_t = 0.0;
+    double previous_f = 0.0;
+    for (int iteration = 0;; ++iteration) {
+      const double s = Pad(t);
+      *x = Vec2{p.p.x + s * u.x, p.p.y + s * u.y};
+      *rx = Radius(*x);
+      const double f = s - *rx;
+      if (f >= 0.0 || iteration == 5) return true;
+      double step = iteration == 0 ? -f : -f * (t - previous_t) / (f - previous_f);
+      const double lo = -f / (1.0 + slope_);
+      const double hi = -f / (1.0 - slope_);
+      if (iteration == 0 && SegmentInOneDisk(p, u, Pad(t + lo), Pad(t + hi))) return false;
+      step = iteration >= 3 ? hi : std::clamp(step, lo, hi);
+      previous_t = t;
+      previous_f = f;
+      t += step;
+    }
+  }
+
+  void Grow() {
+    while (!queue_.empty()) {
+      const size_t k = rng_.Below(queue_.size());
+      const int32_t index = queue_[k];
+      queue_[k] = queue_.back();
+      queue_.pop_back();
+      const double start = kTwoPi * rng_.Uniform();
+      const double step = kTwoPi / tries_;
+      const FieldPoint p = grid_.points()[static_cast<size_t>(index)];
+      GatherNear(p);
+      for (int j = 0; j < tries_; ++j) {
+        Vec2 x;
+        double rx;
+        if (stats_ != nullptr) ++stats_->curve_spots;
+        if (CurveSpot(p, UnitAt(start + step * j), &x, &rx) && AdmissibleNear(p, x, rx)) {
+          Place(x, rx);
+          near_.push_back({x, rx});
+          if (stats_ != nullptr) ++stats_->grown;
+        }
+      }
+    }
+  }
+
+  // A cell is covered when one point's conflict disk holds it whole: its farthest corner is
+  // closer than max(R(q), lower bound of R over the cell). Every spot of it is then in conflict
+  // with q. The 1e-9 relative margin absorbs the rounding of the corner distances.
+  // A coverer's farthest corner is closer than R_hi / (1 - L) (see Certify), and the centre,
+  // the corners' mean, is no farther from q than that corner: so q lies within that reach of
+  // the centre. The grid cell holding the centre is looked at first, where a coverer usually is.
+  bool CoveredByOnePoint(const Rect& c, double r_low, double r_high) const {
+    const double reach = std::min(field_.r_max(), r_high * reach_factor_);
+    const auto covers = [&](const FieldPoint& q) {
+      const double dx = std::max(q.p.x - c.x0, c.x1 - q.p.x);
+      const double dy = std::max(q.p.y - c.y0, c.y1 - q.p.y);
+      const double m = std::max(q.r, r_low);
+      return (dx * dx + dy * dy) * (1.0 + 1e-9) < m * m;
+    };
+    const Rect centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1), 0.5 * (c.x0 + c.x1),
+                      0.5 * (c.y0 + c.y1)};
+    return grid_.AnyNear(centre, covers) || grid_.AnyNear(Grown(centre, reach), covers);
+  }
+
+  // The spot nearest to x inside the half-open domain (x itself unless on a top or right edge).
+  Vec2 Inside(Vec2 x) const {
+    if (x.x >= rect_.x1) x.x = std::nextafter(rect_.x1, rect_.x0);
+    if (x.y >= rect_.y1) x.y = std::nextafter(rect_.y1, rect_.y0);
+    return x;
+  }
+
+  void Certify(const Rect& c, int depth) {
+    for (;;) {
+      if (field_.HasMask() && field_.AllMasked(c)) return;
+      if (stats_ != nullptr) ++stats_->cells_tested;
+      if (stats_ != nullptr) ++stats_->evaluations;
+      const RadiusInterval bounds = field_.Bounds(c);
+      // One point covers the cell only if its farthest corner, at least half a diagonal away,
+      // is closer than R(q) <= R(centre) + L |q - centre|, i.e. closer than R_hi / (1 - L).
+      // A cell too large for that is split at once: its children test and dart themselves.
+      const double half_diagonal = 0.5 * std::sqrt(c.Width() * c.Width() + c.Height() * c.Height());
+      if (depth < max_depth_ &&
+          half_diagonal >= std::min(field_.r_max(), bounds.hi * reach_factor_)) {
+        break;
+      }
+      if (CoveredByOnePoint(c, bounds.lo, bounds.hi)) return;
+      const Vec2 centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1)};
+      if (depth >= max_depth_) {
+        // Finest cell: its centre and quarter points, all inside it (a leaf's inside is wholly
+        // unmasked or wholly masked, since partly masked cells were cut at pixel lines). Once
+        // each is covered, every spot of the cell is within its diagonal of a covered one, and
+        // G(x) = min_q |x - q| - max(R(x), R(q)) has slope <= 1 + L: G <= (1 + L) diagonal.
+        if (stats_ != nullptr) ++stats_->leaves;
+        const double qx0 = c.x0 + 0.25 * (c.x1 - c.x0);
+        const double qx1 = c.x0 + 0.75 * (c.x1 - c.x0);
+        const double qy0 = c.y0 + 0.25 * (c.y1 - c.y0);
+        const double qy1 = c.y0 + 0.75 * (c.y1 - c.y0);
+        const Vec2 spots[5] = {centre, {qx0, qy0}, {qx1, qy0}, {qx0, qy1}, {qx1, qy1}};
+        for (const Vec2& s : spots) {
+          if (TryPlace(Inside(s))) {
+            if (stats_ != nullptr) ++stats_->swept;
+            Grow();
+          }
+        }
+        return;
+      }
+      // Not certified: a free spot seeds growth (a dart, then the centre), else split.
+      const Vec2 dart{rng_.Uniform(c.x0, c.x1), rng_.Uniform(c.y0, c.y1)};
+      if (TryPlace(dart) || TryPlace(Inside(centre))) {
+        if (stats_ != nullptr) ++stats_->swept;
+        Grow();
+        continue;
+      }
+      break;
+    }
+    // A partly masked cell is cut along pixel lines first: its masked part is never covered,
+    // and halving alone would follow the mask's edge down to the finest cells.
+    if (field_.HasMask() && field_.AnyMasked(c)) {
+      Rect pieces[4];
+      const int n = field_.CutAtPixelLines(c, pieces);
+      if (n > 0) {
+        for (int k = 0; k < n; ++k) Certify(pieces[k], depth);
+        return;
+      }
+    }
+    const double mx = 0.5 * (c.x0 + c.x1);
+    const double my = 0.5 * (c.y0 + c.y1);
+    Certify({c.x0, c.y0, mx, my}, depth + 1);
+    Certify({mx, c.y0, c.x1, my}, depth + 1);
+    Certify({c.x0, my, mx, c.y1}, depth + 1);
+    Certify({mx, my, c.x1, c.y1}, depth + 1);
+  }
+
+  // Base cells of side r_max / 2 (diagonal 0.71 r_max, so a point can cover one whole) in rows
+  // from the bottom; depth grows until the side is below 2^-30 r_min.
+  void Sweep() {
+    const double base = 0.5 * field_.r_max();
+    max_depth_ = 0;
+    for (double side = base; side > field_.r_min() * kFieldLeafFraction; side *= 0.5) {
+      ++max_depth_;
+    }
+    ForEachTile(rect_, base, [&](const Rect& tile) { Certify(tile, 0); });
+  }
+
+  Rect rect_;
+  const RadiusField& field_;
+  Rng rng_;
+  FieldPointGrid grid_;
+  int tries_;
+  double slope_;
+  FieldSampleStats* stats_;
+  double pad_absolute_ = 0.0;
+  double reach_factor_ = 1.0;
+  int max_depth_ = 0;
+  std::vector<int32_t> queue_;
+  // The current candidate's neighbours (GatherNear) and how far its curve's spots reach.
+  std::vector<FieldPoint> near_;
+  double spot_limit_ = 0.0;
+};
+
+}  // namespace
+
+Status ValidateFieldSamplerOptions(const FieldSamplerOptions& options, const RadiusField& field) {
+  const Rect& r = options.domain;
+  if (!std::isfinite(r.x0) || !std::isfinite(r.y0) || !std::isfinite(r.x1) ||
+      !std::isfinite(r.y1) || !(r.x0 < r.x1) || !(r.y0 < r.y1)) {
+    return InvalidArgument("domain must be a finite rectangle with x0 < x1 and y0 < y1");
+  }
+  const double limit = kMaxFieldCoordinate * field.r_min();
+  if (std::max({std::abs(r.x0), std::abs(r.x1), std::abs(r.y0), std::abs(r.y1)}) > limit) {
+    return OutOfRange("domain coordinates must be within 2^32 field.r_min of the origin");
+  }
+  if (!(FieldDomainCells(r, field.r_min()) <= kMaxFieldDomainCells)) {
+    return InvalidArgument(
+        "domain (width / field.r_min + 2) * (height / field.r_min + 2) must be at most 6.4e7");
+  }
+  if (options.curve_tries < 1 || options.curve_tries > 64) {
+    return InvalidArgument("curve_tries must be in [1, 64]");
+  }
+  return Status::Ok();
+}
+
+StatusOr<std::vector<Vec2>> SampleField(const FieldSamplerOptions& options,
+                                        const RadiusField& field, FieldSampleStats* stats) {
+  if (Status s = ValidateFieldSamplerOptions(options, field); !s.ok()) return s;
+  return FieldRun(options, field, stats).Run();
+}
+
+}  // namespace scallop
