@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "field_test_fields.h"
 #include "scallop/verify/field_verifier.h"
+#include "tests/field_test_fields.h"
 
 namespace scallop {
 namespace {

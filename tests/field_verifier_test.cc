@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "field_test_fields.h"
 #include "scallop/sampling/field_sampler.h"
+#include "tests/field_test_fields.h"
 
 namespace scallop {
 namespace {

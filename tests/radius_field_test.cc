@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "field_test_fields.h"
 #include "scallop/field/raster_png.h"
 #include "scallop/random/rng.h"
+#include "tests/field_test_fields.h"
 
 namespace scallop {
 namespace {
