@@ -10,6 +10,8 @@ set(CMAKE_LIBRARY_ARCHITECTURE aarch64-linux-gnu)
 set(CMAKE_FIND_ROOT_PATH /usr/aarch64-linux-gnu)
 set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
 set(ENV{PKG_CONFIG_LIBDIR} /usr/lib/aarch64-linux-gnu/pkgconfig:/usr/share/pkgconfig)
-# The dynamic loader and libc of the cross toolchain; the other arm64
-# libraries qemu then finds in /usr/lib/aarch64-linux-gnu.
-set(CMAKE_CROSSCOMPILING_EMULATOR qemu-aarch64 -L /usr/aarch64-linux-gnu)
+# The loader and libc are multiarch libc6:arm64's (/lib/ld-linux-aarch64.so.1),
+# as for every other arm64 library. Not `-L /usr/aarch64-linux-gnu` (the cross
+# toolchain's libc): mixed with the multiarch libraries, its first thread
+# never started, and any program with a thread pool hung at start.
+set(CMAKE_CROSSCOMPILING_EMULATOR qemu-aarch64)
