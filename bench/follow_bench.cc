@@ -27,7 +27,7 @@
 namespace scallop {
 namespace {
 
-constexpr double kWalkLength = 10000;                    // in d
+constexpr double kWalkLength = 10000;                    // in d, unless FOLLOW_BENCH_WALK_D
 constexpr double kView = 64;                             // view side, in d
 constexpr double kStep = 4;                              // d moved per update
 constexpr auto kPace = std::chrono::microseconds(2000);  // one update every 2 ms
@@ -54,12 +54,13 @@ Rect ViewAt(int step, double y) {
 
 // One walk along +x at row `y`; updates paced every kPace (sent at once when
 // behind), so prefetch has the time a real player's motion gives it.
-WalkResult Walk(const std::string& address, Mode mode, const World& world, double y) {
+WalkResult Walk(const std::string& address, Mode mode, const World& world, double y,
+                double walk_length) {
   client::ScallopClient client = client::ScallopClient::Connect(address);
   std::optional<client::FollowSession> session;
   if (mode != Mode::kNaiveGetPoints) session.emplace(client);
   WalkResult result;
-  const int steps = static_cast<int>(kWalkLength / kStep);
+  const int steps = static_cast<int>(walk_length / kStep);
   const auto start = std::chrono::steady_clock::now();
   for (int step = 0; step < steps; ++step) {
     std::this_thread::sleep_until(start + step * kPace);
@@ -95,6 +96,14 @@ WalkResult Walk(const std::string& address, Mode mode, const World& world, doubl
   return result;
 }
 
+// kWalkLength for the figures; FOLLOW_BENCH_WALK_D=<d> for a shorter walk
+// (CI's smoke run walks a few steps, to show the benchmark still runs).
+double WalkLength() {
+  const char* text = std::getenv("FOLLOW_BENCH_WALK_D");
+  const double length = text != nullptr ? std::atof(text) : 0;
+  return length >= kStep ? length : kWalkLength;
+}
+
 void BM_WalkFollowVsNaive(benchmark::State& state) {
   // Its defaults, but no request log line per step.
   const std::unique_ptr<testing::ScallopdProcess> server =
@@ -111,7 +120,8 @@ void BM_WalkFollowVsNaive(benchmark::State& state) {
     double naive_bytes = 0, prefetch_bytes = 0;
     std::map<Mode, double> p99;
     for (const auto& [name, mode] : modes) {
-      WalkResult walk = Walk(server->address(), mode, *World::Create({.seed = ++seed}), 0);
+      WalkResult walk =
+          Walk(server->address(), mode, *World::Create({.seed = ++seed}), 0, WalkLength());
       const std::string prefix = name;
       state.counters[prefix + "_bytes_per_s"] = static_cast<double>(walk.bytes) / walk.seconds;
       state.counters[prefix + "_msgs_per_s"] = static_cast<double>(walk.messages) / walk.seconds;

@@ -12,7 +12,22 @@ packages=(
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libyaml-cpp-dev libfftw3-dev libpng-dev libssl-dev
   python3 python3-grpcio python3-protobuf python3-yaml
+  # scripts/test-portability.sh: a Clang build, and an aarch64 cross build of
+  # the core and its golden tests (arm64 multiarch libraries) run under qemu.
+  clang g++-aarch64-linux-gnu qemu-user
+  libgtest-dev:arm64 libboost-dev:arm64 libcgal-dev:arm64 libgmp-dev:arm64
+  libmpfr-dev:arm64 libfftw3-dev:arm64
 )
+
+# The :arm64 packages need the architecture known to dpkg (then apt-get
+# update below, which runs since they are missing).
+if ! dpkg --print-foreign-architectures | grep -qx arm64; then
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "install-deps: arm64 is not a dpkg architecture; run as root" >&2
+    exit 1
+  fi
+  dpkg --add-architecture arm64
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds everything with warnings as errors, and runs
 # every test twice: in a Release build and under AddressSanitizer +
-# UndefinedBehaviorSanitizer. Run from anywhere, as root on a fresh Debian 12.
+# UndefinedBehaviorSanitizer; the golden tests also with Clang, at -O0 and on
+# aarch64 (scripts/test-portability.sh). Run from anywhere, as root on a fresh Debian 12.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -11,6 +12,10 @@ jobs=2
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DSCALLOP_WERROR=ON
 cmake --build build -j"$jobs"
 ctest --test-dir build --output-on-failure -j"$jobs"
+
+# The same bits with Clang, at -O0 and on aarch64 (under qemu), against the
+# Release build above (docs/determinism.md).
+bash scripts/test-portability.sh build
 
 # The sanitizer build skips the benchmarks: they test speed, not correctness.
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSCALLOP_WERROR=ON \

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 namespace scallop {
 namespace {
@@ -63,6 +64,8 @@ struct LaneTypes<4> {
 
 // Everything below is inlined into its caller, whatever the caller's target:
 // the four-lane code then compiles to AVX inside the AVX2 entry point only.
+// Hence no lambda, and no function without SCALLOP_INLINE, may take or
+// return a lane vector: at -O0 it would be called across two ABIs (KeysOf).
 #define SCALLOP_INLINE [[gnu::always_inline]] inline
 
 template <int kLanes>
@@ -70,6 +73,28 @@ SCALLOP_INLINE typename LaneTypes<kLanes>::Keys Broadcast(double value) {
   typename LaneTypes<kLanes>::Keys keys;
   for (int lane = 0; lane < kLanes; ++lane) keys[lane] = value;
   return keys;
+}
+
+// The keys of points first .. first + kLanes - 1 about (px, py): the bits of
+// the squared distance, its low kIndexBits replaced by the point's index.
+// A function, not a lambda in its caller: a lambda is not always_inline, and
+// at -O0 GCC called it as a function compiled without AVX from the AVX2
+// entry point, whose four-lane return then crossed two ABIs (the caller
+// expected it in a register, the callee wrote through a hidden pointer
+// taken from the register that held the closure): a crash.
+template <int kLanes>
+SCALLOP_INLINE typename LaneTypes<kLanes>::Keys KeysOf(const double* xs, const double* ys,
+                                                       typename LaneTypes<kLanes>::Keys px,
+                                                       typename LaneTypes<kLanes>::Keys py,
+                                                       uint32_t first) {
+  using Keys = typename LaneTypes<kLanes>::Keys;
+  using Bits = typename LaneTypes<kLanes>::Bits;
+  Keys x, y;
+  std::memcpy(&x, xs + first, sizeof(x));
+  std::memcpy(&y, ys + first, sizeof(y));
+  const Keys dx = px - x, dy = py - y;  // SquaredDistanceFrom's order
+  const auto bits = reinterpret_cast<Bits>(dx * dx + dy * dy);
+  return reinterpret_cast<Keys>((bits & ~kIndexMask) | (first + LaneTypes<kLanes>::kIndex));
 }
 
 // The three smallest keys offered to each lane, in order. Non-negative
@@ -94,7 +119,9 @@ struct SmallestKeys {
 
   // Lane 0 gets the three smallest of all lanes.
   SCALLOP_INLINE void MergeAllLanes() {
-    for (int swap = 1; swap < kLanes; swap *= 2) MergeLanes(swap);
+    static_assert(kLanes == 2 || kLanes == 4);
+    MergeLanes<1>();
+    if constexpr (kLanes == 4) MergeLanes<2>();
   }
 
  private:
@@ -109,14 +136,25 @@ struct SmallestKeys {
     third = Max(high, rest);
   }
 
-  // Each lane gets the three smallest of its own and of lane `lane ^ swap`'s:
+  // Each lane gets the three smallest of its own and of lane `lane ^ kSwap`'s:
   // with both sorted, the lane-wise minima of one and the other reversed are
   // the three smallest of the six (a bitonic half-cleaner).
-  SCALLOP_INLINE void MergeLanes(int swap) {
-    const auto partner = LaneTypes<kLanes>::kIndex ^ static_cast<uint64_t>(swap);
-    Sort(Min(first, __builtin_shuffle(third, partner)),
-         Min(second, __builtin_shuffle(second, partner)),
-         Min(third, __builtin_shuffle(first, partner)));
+  template <int kSwap>
+  SCALLOP_INLINE void MergeLanes() {
+    Sort(Min(first, Partners<kSwap>(third)), Min(second, Partners<kSwap>(second)),
+         Min(third, Partners<kSwap>(first)));
+  }
+
+  // Lane i of the result is lane i ^ kSwap of `keys`: one shuffle with
+  // constant lane indices. __builtin_shufflevector is GCC's (12 on) and
+  // Clang's; GCC's __builtin_shuffle, with a mask vector, is not Clang's.
+  template <int kSwap, int... kLane>
+  SCALLOP_INLINE static Keys Partners(Keys keys, std::integer_sequence<int, kLane...>) {
+    return __builtin_shufflevector(keys, keys, (kLane ^ kSwap)...);
+  }
+  template <int kSwap>
+  SCALLOP_INLINE static Keys Partners(Keys keys) {
+    return Partners<kSwap>(keys, std::make_integer_sequence<int, kLanes>());
   }
 };
 
@@ -194,22 +232,14 @@ template <int kLanes>
 SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy,
                                                           double radius1, TwoNearest& best) const {
   using Keys = typename LaneTypes<kLanes>::Keys;
-  using Bits = typename LaneTypes<kLanes>::Bits;
   static_assert(kRunPoints % kLanes == 0);
   // Examines every point of p's 3x3 block, and some beyond it (later cells
   // of a row, the far pads, possibly a point twice): extra points are real,
   // or farther than any block reaches, so they cannot make a wrong answer
   // look right.
   const Keys px = Broadcast<kLanes>(p.x), py = Broadcast<kLanes>(p.y);
-  // The keys of points first .. first + kLanes - 1.
-  auto keys_from = [&](uint32_t first) {
-    Keys x, y;
-    std::memcpy(&x, xs_.data() + first, sizeof(x));
-    std::memcpy(&y, ys_.data() + first, sizeof(y));
-    const Keys dx = px - x, dy = py - y;  // SquaredDistanceFrom's order
-    const auto bits = reinterpret_cast<Bits>(dx * dx + dy * dy);
-    return reinterpret_cast<Keys>((bits & ~kIndexMask) | (first + LaneTypes<kLanes>::kIndex));
-  };
+  const double* const xs = xs_.data();
+  const double* const ys = ys_.data();
   uint32_t first[3], end[3];
   for (int r = 0; r < 3; ++r) {
     const int row = cy - 1 + r;
@@ -220,7 +250,8 @@ SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx,
   static_assert(kVectors >= 3);
   Keys fixed[kVectors];
   for (int v = 0; v < kVectors; ++v) {
-    fixed[v] = keys_from(first[v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
+    fixed[v] =
+        KeysOf<kLanes>(xs, ys, px, py, first[v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
   }
   SmallestKeys<kLanes> keys(fixed[0], fixed[1], fixed[2]);
   for (int v = 3; v < kVectors; ++v) keys.Offer(fixed[v]);
@@ -228,7 +259,8 @@ SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx,
   if ((end[0] - first[0] > kRunPoints) | (end[1] - first[1] > kRunPoints) |
       (end[2] - first[2] > kRunPoints)) [[unlikely]] {
     for (int r = 0; r < 3; ++r) {
-      for (uint32_t k = first[r] + kRunPoints; k < end[r]; k += kLanes) keys.Offer(keys_from(k));
+      for (uint32_t k = first[r] + kRunPoints; k < end[r]; k += kLanes)
+        keys.Offer(KeysOf<kLanes>(xs, ys, px, py, k));
     }
   }
   keys.MergeAllLanes();
