@@ -16,7 +16,7 @@ packages=(
   # the core and its golden tests (arm64 multiarch libraries) run under qemu.
   clang g++-aarch64-linux-gnu qemu-user
   libgtest-dev:arm64 libboost-dev:arm64 libcgal-dev:arm64 libgmp-dev:arm64
-  libmpfr-dev:arm64 libfftw3-dev:arm64
+  libmpfr-dev:arm64 libfftw3-dev:arm64 libpng-dev:arm64
 )
 
 # The :arm64 packages need the architecture known to dpkg (then apt-get
