@@ -53,8 +53,10 @@ TEST(E2eStreamSlotsTest, UnreadStreamsNeitherStarveUnaryCallsNorStayForEver) {
   std::vector<std::unique_ptr<UnreadStream>> streams;
   for (int k = 0; k < 64; ++k) {
     streams.push_back(std::make_unique<UnreadStream>());
-    // A deadline, so that a server that never drops them cannot hang the test.
-    streams.back()->context.set_deadline(std::chrono::system_clock::now() + seconds(40));
+    // A deadline, so that a server that never drops them cannot hang the
+    // test; far beyond the 10 s stall, since a loaded machine (CI runs other
+    // builds beside) may take long to reach the first write of each.
+    streams.back()->context.set_deadline(std::chrono::system_clock::now() + seconds(150));
     streams.back()->reader =
         stub->StreamPoints(&streams.back()->context, StreamRequest({0, 0, 4000, 4000}));
   }
@@ -74,7 +76,7 @@ TEST(E2eStreamSlotsTest, UnreadStreamsNeitherStarveUnaryCallsNorStayForEver) {
   // The event: a stream slot comes free (the stall timer, 10 s by default,
   // has dropped the unread ones).
   grpc::Status fresh;
-  const auto deadline = std::chrono::steady_clock::now() + seconds(30);
+  const auto deadline = std::chrono::steady_clock::now() + seconds(120);
   do {
     fresh = client.StreamPoints(StreamRequest({0, 0, 20, 20}),
                                 [](const v1::PointsChunk&) { return true; });
