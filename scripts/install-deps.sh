@@ -12,6 +12,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libyaml-cpp-dev libfftw3-dev libpng-dev libssl-dev
   python3 python3-grpcio python3-protobuf python3-yaml
+  openssl  # the tests make their TLS certificates with it
   # scripts/test-portability.sh: a Clang build, and an aarch64 cross build of
   # the core and its golden tests (arm64 multiarch libraries) run under qemu.
   clang g++-aarch64-linux-gnu qemu-user

@@ -49,7 +49,12 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
                                     "max_metrics_connections",
                                     "reuse_port",
                                     "metrics_listen",
-                                    "log_level"};
+                                    "log_level",
+                                    "tls_cert",
+                                    "tls_key",
+                                    "tls_client_ca",
+                                    "auth_tokens",
+                                    "reflection"};
   std::string key;
   try {
     const YAML::Node root = YAML::LoadFile(path);
@@ -86,6 +91,11 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
     read("log_level", config.log_level);
     read("page_token_secret", config.page_token_secret);
     read("default_world", config.default_world);
+    read("tls_cert", config.tls_cert);
+    read("tls_key", config.tls_key);
+    read("tls_client_ca", config.tls_client_ca);
+    read("auth_tokens", config.auth_tokens);
+    read("reflection", config.reflection);
     for (const auto& entry : root["worlds"]) {
       const std::string name = entry.first.as<std::string>();
       const YAML::Node& fields = entry.second;
@@ -187,6 +197,14 @@ Status ValidateConfig(const ServerConfig& config) {
   if (!std::set<std::string>{"debug", "info", "warn", "error", "off"}.contains(config.log_level)) {
     return InvalidArgument("log_level: must be debug, info, warn, error or off, got '" +
                            config.log_level + "'");
+  }
+  // Files are read (and their errors named) when the server starts; here only
+  // the combinations, so a half-configured TLS never falls back to plaintext.
+  if (config.tls_cert.empty() != config.tls_key.empty()) {
+    return InvalidArgument("tls_cert and tls_key: give both (TLS) or neither (plaintext)");
+  }
+  if (!config.tls_client_ca.empty() && config.tls_cert.empty()) {
+    return InvalidArgument("tls_client_ca: needs tls_cert and tls_key (mutual TLS is TLS)");
   }
   if (!config.worlds.contains(config.default_world)) {
     return InvalidArgument("default_world: no world named '" + config.default_world + "'");

@@ -48,6 +48,17 @@ struct ServerConfig {
   std::string log_level = "info";
   // Key for page tokens. Empty: derived from the world set (see page_token.h).
   std::string page_token_secret;
+  // TLS (tls_credentials.h): PEM files of the server's certificate chain and
+  // key; both or neither. With tls_client_ca, mutual TLS: clients must show a
+  // certificate that CA signs. Empty: plaintext.
+  std::string tls_cert;
+  std::string tls_key;
+  std::string tls_client_ca;
+  // Bearer tokens, one a line (token_table.h). Empty: no token needed.
+  std::string auth_tokens;
+  // Serve gRPC reflection (what lets grpcurl list the API). Off hides the
+  // API's shape from whoever can reach the port; the health check stays.
+  bool reflection = true;
   std::string default_world = "default";
   // Named worlds, sorted by name. "default" (seed 1, d 1, A3) is built in.
   std::map<std::string, World> worlds{{"default", *World::Create({.seed = 1})}};

@@ -7,15 +7,8 @@ set -euo pipefail
 scallop=${1:?usage: cli_test.sh path/to/scallop}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
-
-# Counters by assignment: ((n++)) returns 1 when n is 0, which set -e treats as failure.
-pass() { passed=$((passed + 1)); }
-fail() {
-  failed=$((failed + 1))
-  echo "FAIL: $*" >&2
-}
+# shellcheck source=shell_checks.sh
+source "$(dirname "$0")/shell_checks.sh"
 
 # check DESCRIPTION COMMAND...: passes when the command succeeds.
 check() {
@@ -24,18 +17,14 @@ check() {
   if "$@"; then pass; else fail "$what"; fi
 }
 
-# run COMMAND...: runs scallop with stdout in $work/out, stderr in $work/err,
-# and its exit code in $status (without tripping set -e).
-run() {
-  status=0
-  "$scallop" "$@" >"$work/out" 2>"$work/err" || status=$?
-}
+# run_scallop ARGS...: `run` on scallop.
+run_scallop() { run "$scallop" "$@"; }
 
 # expect_exit CODE ARGS...: scallop ARGS must exit with CODE.
 expect_exit() {
   local want=$1
   shift
-  run "$@"
+  run_scallop "$@"
   if [[ $status == "$want" ]]; then
     pass
   else
@@ -55,7 +44,7 @@ expect_bad_argument() {
 rows() {
   local file=$1
   shift
-  run plane "$@"
+  run_scallop plane "$@"
   if [[ $status != 0 ]]; then fail "scallop plane $*: exit $status: $(head -c 300 "$work/err")"; fi
   tail -n +2 "$work/out" | sort >"$file"
 }
@@ -152,14 +141,14 @@ check "SVG without --seams has no lines" test "$(grep -c '<line ' "$work/out" ||
 expect_exit 0 analyze --domain 0,0,20,20 --torus --algorithm a3,dart --sets 2 --json
 check "analyze --json: two series" test "$(grep -o '"name":' "$work/out" | wc -l)" = 2
 check "analyze --json: A3 rho near 0.86" grep -qE '"rho":\{"mean":0\.8[4-8]' "$work/out"
-run plane --rect -10,-10,10,10
+run_scallop plane --rect -10,-10,10,10
 cp "$work/out" "$work/plane.csv"
 expect_exit 0 analyze --input "$work/plane.csv" --rect -8,-8,8,8 --png "$work/p.png" \
   --plot "$work/p.svg"
 check "analyze --png writes a PNG" test "$(head -c 4 "$work/p.png" | tail -c 3)" = PNG
 check "analyze --plot writes an SVG" grep -q '^<svg ' "$work/p.svg"
 check "analyze of a file drops points outside --rect" grep -q 'outside the window' "$work/out"
-run plane --rect -10,-10,10,10 --format json
+run_scallop plane --rect -10,-10,10,10 --format json
 cp "$work/out" "$work/plane.json"
 expect_exit 0 analyze --input "$work/plane.json" --input "$work/plane.csv" --json
 check "analyze --input twice: two sets" grep -qF '"sets":2' "$work/out"
@@ -231,5 +220,4 @@ expect_bad_argument "last sample" noise --rect 4294967000,0,4294967592,296 --siz
 expect_bad_argument "PNG" noise --rect 0,0,8,8 --size 8x8 --png "$work/no/such/dir/x.png"
 expect_exit 2 noise --rect 0,0,8,8 --size 8x8
 
-echo "$passed passed, $failed failed"
-[[ $failed == 0 ]]
+report cli_test

@@ -49,7 +49,10 @@ int RunFollow(const FollowArguments& arguments) {
   }
   StatusOr<std::vector<Rect>> path = ReadPath(arguments.path);
   if (!path.ok()) return ReportBadArguments("follow", path.status());
-  const client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+  StatusOr<client::ScallopClient> connected =
+      ConnectTo(arguments.remote.server, arguments.remote.connection);
+  if (!connected.ok()) return ReportBadArguments("follow", connected.status());
+  const client::ScallopClient& client = *connected;
   client::FollowSession session(client, CallOptionsFor(arguments.remote));
   std::cout << std::setprecision(17) << "id,x,y\n";
   int64_t total_points = 0, total_bytes = 0;

@@ -1,10 +1,12 @@
 // `scallop health`: the standard gRPC health check of a scallopd, as an exit
 // code for probes (Docker HEALTHCHECK, Kubernetes exec probes, scripts):
-// 0 when SERVING, 1 when NOT_SERVING or unreachable within the timeout.
+// 0 when SERVING, 1 when NOT_SERVING or unreachable within the timeout, 2 when
+// a --tls-* or token file cannot be read.
 #include <iostream>
 #include <memory>
 
 #include "client/commands/commands.h"
+#include "client/options/connection_options.h"
 #include "scallop_client.h"
 
 namespace scallop::cli {
@@ -14,10 +16,16 @@ struct HealthArguments {
   std::string server;
   double timeout_seconds = 2;
   bool quiet = false;
+  ConnectionArguments connection;  // TLS (the health service needs no token)
 };
 
 int RunHealth(const HealthArguments& arguments) {
-  client::ScallopClient client = client::ScallopClient::Connect(arguments.server);
+  StatusOr<client::ScallopClient> connected = ConnectTo(arguments.server, arguments.connection);
+  if (!connected.ok()) {
+    std::cerr << "scallop health: " << connected.status().message() << '\n';
+    return 2;
+  }
+  client::ScallopClient& client = *connected;
   bool serving = false;
   const grpc::Status status =
       client.CheckHealth(serving, {.timeout = std::chrono::milliseconds(
@@ -43,6 +51,7 @@ CommandRunner RegisterHealth(CLI::App& app) {
       ->check(CLI::Range(0.001, 3600.0))
       ->default_str("2");
   command->add_flag("--quiet", arguments->quiet, "Print nothing; the exit code says it");
+  AddConnectionOptions(*command, arguments->connection);
   return [arguments] { return RunHealth(*arguments); };
 }
 

@@ -27,7 +27,10 @@ int RunInfo(const InfoArguments& arguments) {
       return ReportBadArguments("info", status);
     }
   }
-  client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+  StatusOr<client::ScallopClient> connected =
+      ConnectTo(arguments.remote.server, arguments.remote.connection);
+  if (!connected.ok()) return ReportBadArguments("info", connected.status());
+  client::ScallopClient& client = *connected;
   const client::CallOptions options = CallOptionsFor(arguments.remote);
   v1::GetServerInfoResponse info;
   if (grpc::Status status = client.GetServerInfo(info, options); !status.ok()) {

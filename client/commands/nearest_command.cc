@@ -92,7 +92,10 @@ int RunRemote(const NearestArguments& arguments, const std::vector<Vec2>& positi
   if (Status status = SetRequestWorld(arguments.remote, arguments.world, request); !status.ok()) {
     return ReportBadArguments("nearest", status);
   }
-  client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+  StatusOr<client::ScallopClient> connected =
+      ConnectTo(arguments.remote.server, arguments.remote.connection);
+  if (!connected.ok()) return ReportBadArguments("nearest", connected.status());
+  client::ScallopClient& client = *connected;
   const client::CallOptions options = CallOptionsFor(arguments.remote);
   v1::GetServerInfoResponse info;
   if (grpc::Status status = client.GetServerInfo(info, options); !status.ok()) {

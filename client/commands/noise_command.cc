@@ -132,7 +132,10 @@ int RunNoise(const NoiseArguments& arguments) {
     request.set_width(spec->width);
     request.set_height(spec->height);
     request.set_channel(ChannelToMessage(spec->channel));
-    client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+    StatusOr<client::ScallopClient> connected =
+        ConnectTo(arguments.remote.server, arguments.remote.connection);
+    if (!connected.ok()) return ReportBadArguments("noise", connected.status());
+    client::ScallopClient& client = *connected;
     v1::NoiseGridResponse response;
     if (grpc::Status status = client.NoiseGrid(request, response, CallOptionsFor(arguments.remote));
         !status.ok()) {

@@ -27,7 +27,10 @@ int RunPoints(const PointsArguments& arguments) {
     return ReportBadArguments("points", status);
   }
   request.set_page_size(arguments.page_size);
-  client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+  StatusOr<client::ScallopClient> connected =
+      ConnectTo(arguments.remote.server, arguments.remote.connection);
+  if (!connected.ok()) return ReportBadArguments("points", connected.status());
+  client::ScallopClient& client = *connected;
   const client::CallOptions options = CallOptionsFor(arguments.remote);
   PlanePoints points;
   if (grpc::Status status = client.GetAllPoints(request, points, options); !status.ok()) {

@@ -27,7 +27,10 @@ int RunStream(const StreamArguments& arguments) {
       !status.ok()) {
     return ReportBadArguments("stream", status);
   }
-  client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+  StatusOr<client::ScallopClient> connected =
+      ConnectTo(arguments.remote.server, arguments.remote.connection);
+  if (!connected.ok()) return ReportBadArguments("stream", connected.status());
+  client::ScallopClient& client = *connected;
   const client::CallOptions options = CallOptionsFor(arguments.remote);
   PlanePoints points;
   const bool incremental_csv = arguments.format == PointFormat::kCsv;

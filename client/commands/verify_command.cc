@@ -116,7 +116,10 @@ int RunRemoteVerify(const VerifyArguments& arguments) {
       !status.ok()) {
     return ReportBadArguments("verify", status);
   }
-  client::ScallopClient client = client::ScallopClient::Connect(arguments.remote.server);
+  StatusOr<client::ScallopClient> connected =
+      ConnectTo(arguments.remote.server, arguments.remote.connection);
+  if (!connected.ok()) return ReportBadArguments("verify", connected.status());
+  client::ScallopClient& client = *connected;
   v1::VerifyResponse response;
   if (grpc::Status status = client.Verify(request, response, CallOptionsFor(arguments.remote));
       !status.ok()) {

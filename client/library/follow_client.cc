@@ -9,7 +9,7 @@ namespace scallop::client {
 
 FollowSession::FollowSession(const ScallopClient& client, const CallOptions& options)
     : stub_(v1::Scallop::NewStub(client.channel())) {
-  if (options.timeout) context_.set_deadline(std::chrono::system_clock::now() + *options.timeout);
+  client.Configure(context_, options);
   stream_ = stub_->Follow(&context_);
 }
 

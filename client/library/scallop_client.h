@@ -17,6 +17,20 @@
 
 namespace scallop::client {
 
+// How to reach scallopd: plaintext by default; TLS when `tls` is set, with
+// mutual TLS when a client certificate and key are given; a bearer token
+// sent with every call when `token` is not empty. PEM texts, not file names,
+// so that callers choose where keys come from (the CLI reads files).
+struct ConnectionOptions {
+  bool tls = false;
+  std::string tls_ca_pem;    // roots that sign the server; empty: the system's roots
+  std::string tls_cert_pem;  // client certificate chain, for mutual TLS (with the key)
+  std::string tls_key_pem;   // its private key
+  // Sent as "authorization: Bearer TOKEN". Over plaintext anyone on the path
+  // reads it: use it with TLS outside a trusted network.
+  std::string token;
+};
+
 struct CallOptions {
   // Deadline of each call, from when it starts; none when unset.
   std::optional<std::chrono::milliseconds> timeout;
@@ -24,10 +38,19 @@ struct CallOptions {
 
 class ScallopClient {
  public:
-  explicit ScallopClient(std::shared_ptr<grpc::Channel> channel);
+  // `token`, when not empty, goes with every call as a bearer token.
+  explicit ScallopClient(std::shared_ptr<grpc::Channel> channel, std::string token = {});
 
   // A client of HOST:PORT over plaintext. Cheap: connects on the first call.
   static ScallopClient Connect(const std::string& address);
+  // The same with TLS, mutual TLS and a token as `options` asks. PEM texts
+  // are checked only at the handshake: a bad one fails the first call
+  // (UNAVAILABLE), so read and check files before (as the CLI does).
+  static ScallopClient Connect(const std::string& address, const ConnectionOptions& options);
+
+  // Sets the deadline and the token on a context, for callers that make
+  // their own stubs on channel() (FollowClient).
+  void Configure(grpc::ClientContext& context, const CallOptions& options) const;
 
   // One page, as the server returns it.
   grpc::Status GetPoints(const v1::GetPointsRequest& request, v1::GetPointsResponse& response,
@@ -69,6 +92,7 @@ class ScallopClient {
 
  private:
   std::shared_ptr<grpc::Channel> channel_;
+  std::string token_;
   std::unique_ptr<v1::Scallop::Stub> stub_;
 };
 

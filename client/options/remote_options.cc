@@ -16,6 +16,7 @@ void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server
   command.add_option("--timeout", arguments.timeout_seconds, "Deadline of each call, seconds")
       ->check(CLI::NonNegativeNumber);
   if (server_optional) command.get_option("--timeout")->needs(server);
+  AddConnectionOptions(command, arguments.connection);
 }
 
 client::CallOptions CallOptionsFor(const RemoteArguments& arguments) {

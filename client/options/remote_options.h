@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "client/options/connection_options.h"
 #include "client/options/world_options.h"
 #include "scallop/v1/scallop.pb.h"
 #include "scallop_client.h"
@@ -13,13 +14,15 @@
 namespace scallop::cli {
 
 struct RemoteArguments {
-  std::string server;          // HOST:PORT, required
-  std::string world_name;      // a world configured on the server, instead of --seed...
-  double timeout_seconds = 0;  // deadline of each call; 0 for none
+  std::string server;              // HOST:PORT, required
+  std::string world_name;          // a world configured on the server, instead of --seed...
+  double timeout_seconds = 0;      // deadline of each call; 0 for none
+  ConnectionArguments connection;  // TLS and token
 };
 
 // Adds --server (required unless `server_optional`, for commands that also run
-// locally), --world (excludes the inline world options) and --timeout to a
+// locally), --world (excludes the inline world options), --timeout and the
+// connection options (TLS, token) to a
 // command that already has the world options.
 void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server_optional = false);
 

@@ -6,11 +6,16 @@ rectangle (ids in decimal, coordinates with 17 significant digits), reading
 every page of GetPoints or, with --stream, the chunks of StreamPoints.
 Stubs come from generate_stubs.sh; put their folder on PYTHONPATH.
 
+With --tls-ca (and --tls-cert/--tls-key for mutual TLS) it speaks TLS; a
+token from --token-file or the SCALLOP_TOKEN environment variable (kept out
+of shell history) goes with every call as "authorization: Bearer TOKEN".
+
   ./generate_stubs.sh /tmp/scallop-py
   PYTHONPATH=/tmp/scallop-py ./scallop_points.py --server 127.0.0.1:50051 \
       --seed 7 --rect=0,0,40,40   # "=": argparse reads "-5,..." as a flag
 """
 import argparse
+import os
 import sys
 
 import grpc
@@ -36,6 +41,10 @@ def parse_arguments(argv):
     parser.add_argument("--stream", action="store_true", help="use StreamPoints")
     parser.add_argument("--page-size", type=int, default=0)
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per call")
+    parser.add_argument("--tls-ca", help="PEM roots that sign the server (turns TLS on)")
+    parser.add_argument("--tls-cert", help="PEM client certificate, for mutual TLS")
+    parser.add_argument("--tls-key", help="PEM private key of --tls-cert")
+    parser.add_argument("--token-file", help="file whose first line is the bearer token")
     return parser.parse_args(argv)
 
 
@@ -48,6 +57,38 @@ def world_choice(arguments):
             seed=arguments.seed, min_distance=arguments.min_distance,
             algorithm=ALGORITHMS[arguments.algorithm], density=arguments.density)}
     return {}
+
+
+def read_file(flag, path):
+    try:
+        with open(path, "rb") as file:
+            return file.read()
+    except OSError as error:
+        raise ValueError(f"{flag}: cannot read '{path}': {error.strerror}") from error
+
+
+def open_channel(arguments):
+    """Plaintext, TLS or mutual TLS, as the --tls-* options ask."""
+    if not (arguments.tls_ca or arguments.tls_cert):
+        return grpc.insecure_channel(arguments.server)
+    if bool(arguments.tls_cert) != bool(arguments.tls_key):
+        raise ValueError("--tls-cert and --tls-key: give both or neither")
+    credentials = grpc.ssl_channel_credentials(
+        root_certificates=arguments.tls_ca and read_file("--tls-ca", arguments.tls_ca),
+        private_key=arguments.tls_key and read_file("--tls-key", arguments.tls_key),
+        certificate_chain=arguments.tls_cert and read_file("--tls-cert", arguments.tls_cert))
+    return grpc.secure_channel(arguments.server, credentials)
+
+
+def call_metadata(arguments):
+    """The bearer token, from --token-file or SCALLOP_TOKEN, as call metadata."""
+    token = os.environ.get("SCALLOP_TOKEN", "")
+    if arguments.token_file:
+        lines = read_file("--token-file", arguments.token_file).decode().splitlines()
+        token = lines[0].strip() if lines else ""
+        if not token:
+            raise ValueError(f"--token-file: '{arguments.token_file}' has no token")
+    return [("authorization", f"Bearer {token}")] if token else []
 
 
 def parse_rect(text):
@@ -63,7 +104,8 @@ def points_of_pages(stub, arguments, rect):
     while True:
         response = stub.GetPoints(scallop_pb2.GetPointsRequest(
             rect=rect, page_size=arguments.page_size, page_token=token,
-            **world_choice(arguments)), timeout=arguments.timeout)
+            **world_choice(arguments)), timeout=arguments.timeout,
+            metadata=arguments.metadata)
         yield response.points
         token = response.next_page_token
         if not token:
@@ -73,7 +115,8 @@ def points_of_pages(stub, arguments, rect):
 def points_of_stream(stub, arguments, rect):
     """The chunks of StreamPoints, one region each."""
     request = scallop_pb2.StreamPointsRequest(rect=rect, **world_choice(arguments))
-    for chunk in stub.StreamPoints(request, timeout=arguments.timeout):
+    for chunk in stub.StreamPoints(request, timeout=arguments.timeout,
+                                   metadata=arguments.metadata):
         yield chunk.points
 
 
@@ -81,10 +124,12 @@ def main(argv):
     arguments = parse_arguments(argv)
     try:
         rect = parse_rect(arguments.rect)
+        arguments.metadata = call_metadata(arguments)
+        channel = open_channel(arguments)
     except ValueError as error:
         print(f"scallop_points: {error}", file=sys.stderr)
         return 2
-    with grpc.insecure_channel(arguments.server) as channel:
+    with channel:
         stub = scallop_pb2_grpc.ScallopStub(channel)
         read = points_of_stream if arguments.stream else points_of_pages
         out = sys.stdout

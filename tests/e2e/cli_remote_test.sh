@@ -14,22 +14,8 @@ cleanup() {
   rm -rf "$work"
 }
 trap cleanup EXIT
-passed=0
-failed=0
-pass() { passed=$((passed + 1)); }
-fail() {
-  failed=$((failed + 1))
-  echo "FAIL: $*" >&2
-}
-# run COMMAND...: stdout in $work/out, stderr in $work/err, exit code in $status.
-run() {
-  status=0
-  "$@" >"$work/out" 2>"$work/err" || status=$?
-}
-expect_status() {
-  local want=$1 what=$2
-  if [ "$status" -eq "$want" ]; then pass; else fail "$what: exit $status, want $want ($(cat "$work/err"))"; fi
-}
+# shellcheck source=../shell_checks.sh
+source "$(dirname "$0")/../shell_checks.sh"
 
 # Start on a free port (port 0) and read the address it prints.
 mkfifo "$work/address"
@@ -206,5 +192,4 @@ wait "$server_pid" && server_status=0 || server_status=$?
 server_pid=
 if [ "$server_status" -eq 0 ]; then pass; else fail "scallopd exit $server_status on SIGTERM"; fi
 
-echo "cli_remote_test: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+report cli_remote_test

@@ -44,4 +44,20 @@ client --rect=10,0,0,10 >/dev/null 2>"$work/err" || status=$?
 if [ "$status" != 1 ] || ! grep -q "INVALID_ARGUMENT: rect" "$work/err"; then
   echo "python client, inverted rect: exit $status, stderr: $(cat "$work/err")"; exit 1
 fi
-echo "python client: 3 comparisons with scallop plane and 1 error case passed"
+# Over mutual TLS, with certificates made here.
+bash "$source_dir/tests/e2e/make_test_certificates.sh" "$work"
+"$scallopd" --listen 127.0.0.1:0 --tls-cert "$work/server.crt" --tls-key "$work/server.key" \
+  --tls-client-ca "$work/ca.crt" >"$work/secure-address" 2>"$work/secure-log" &
+secure_pid=$!
+for _ in $(seq 100); do grep -q listening "$work/secure-address" 2>/dev/null && break; sleep 0.1; done
+address=$(sed -n 's/^scallopd listening on //p' "$work/secure-address")
+[ -n "$address" ] || { echo "TLS scallopd did not start"; cat "$work/secure-log"; exit 1; }
+tls="--tls-ca $work/ca.crt --tls-cert $work/client.crt --tls-key $work/client.key"
+compare "mutual TLS" "$tls --seed 7 --rect=-20,-20,30,30" "--seed 7 --rect -20,-20,30,30"
+status=0
+client --tls-ca "$work/ca.crt" --timeout 5 --seed 7 --rect=0,0,10,10 >/dev/null 2>"$work/err" || status=$?
+kill "$secure_pid"
+if [ "$status" != 1 ] || ! grep -q "UNAVAILABLE" "$work/err"; then
+  echo "python client, TLS without a client certificate: exit $status, stderr: $(cat "$work/err")"; exit 1
+fi
+echo "python client: 4 comparisons with scallop plane and 2 error cases passed"

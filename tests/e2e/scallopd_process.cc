@@ -40,9 +40,11 @@ std::string ReadAddressLine(int fd, std::chrono::milliseconds timeout) {
 
 }  // namespace
 
-std::unique_ptr<ScallopdProcess> ScallopdProcess::Start(const std::vector<std::string>& arguments,
-                                                        const std::string& listen) {
+std::unique_ptr<ScallopdProcess> ScallopdProcess::Start(
+    const std::vector<std::string>& arguments, const std::string& listen,
+    const client::ConnectionOptions& connection) {
   std::unique_ptr<ScallopdProcess> process(new ScallopdProcess());
+  process->connection_ = connection;
   char log_template[] = "/tmp/scallopd-test-XXXXXX";
   const int log_fd = mkstemp(log_template);
   process->log_path_ = log_template;

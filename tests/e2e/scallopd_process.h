@@ -16,14 +16,21 @@ class ScallopdProcess {
  public:
   // Starts SCALLOPD_PATH (or $SCALLOPD_UNDER_TEST, to run the tests against
   // another build, e.g. to see a new test fail on the old server) with
-  // `arguments` plus --listen `listen`, and waits up to 20 s for SERVING.
+  // `arguments` plus --listen `listen`, and waits up to 20 s for SERVING,
+  // asked over `connection` (TLS for a TLS server). Client() connects with it.
   // Null (with the reason on stderr) if it fails.
   static std::unique_ptr<ScallopdProcess> Start(const std::vector<std::string>& arguments,
-                                                const std::string& listen = "127.0.0.1:0");
+                                                const std::string& listen = "127.0.0.1:0",
+                                                const client::ConnectionOptions& connection = {});
   ~ScallopdProcess();
 
   const std::string& address() const { return address_; }
-  client::ScallopClient Client() const { return client::ScallopClient::Connect(address_); }
+  client::ScallopClient Client() const {
+    return client::ScallopClient::Connect(address_, connection_);
+  }
+  client::ScallopClient Client(const client::ConnectionOptions& connection) const {
+    return client::ScallopClient::Connect(address_, connection);
+  }
 
   // The next line scallopd printed on stdout after the address line (e.g.
   // "scallopd metrics on HOST:PORT"), or empty after `timeout`.
@@ -46,6 +53,7 @@ class ScallopdProcess {
   int stdout_fd_ = -1;
   std::string log_path_;
   std::string address_;
+  client::ConnectionOptions connection_;
   bool exited_ = false;
 };
 
