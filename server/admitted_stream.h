@@ -22,8 +22,13 @@ class AdmittedStream : public Reactor {
   AdmittedStream(InFlightLimit& limit, const char* method, RequestMetrics* metrics)
       : log_(method, metrics), limit_(limit) {}
 
-  // Takes a slot. When the server is full, finishes the call and returns false.
-  bool Admit() {
+  // Takes a slot. When `access` (ServiceContext::Authorize) is not OK or the
+  // server is full, finishes the call and returns false.
+  bool Admit(const grpc::Status& access) {
+    if (!access.ok()) {
+      FinishWith(access);
+      return false;
+    }
     if (!limit_.TryAdmit()) {
       FinishWith(limit_.Refusal());
       return false;

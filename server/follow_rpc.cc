@@ -51,7 +51,7 @@ class FollowReactor final
         stall_message_(std::make_shared<const std::string>(StallStatus().error_message())),
         idle_message_(std::make_shared<const std::string>(IdleStatus().error_message())),
         timer_(context) {
-    if (!Admit()) return;
+    if (!Admit(shared.Authorize(*context))) return;
     Read();
   }
 
@@ -146,6 +146,10 @@ class FollowReactor final
   // The world (first message only) and the update's validity.
   grpc::Status PrepareUpdate() {
     if (!tracker_) {
+      // The token was checked at the start; its worlds only now, with the first message.
+      if (grpc::Status status = shared_.Authorize(*context_, request_); !status.ok()) {
+        return status;
+      }
       ResolvedWorld resolved;
       if (grpc::Status status = shared_.worlds.Resolve(request_, resolved); !status.ok()) {
         return status;

@@ -14,7 +14,7 @@ grpc::ServerUnaryReactor* ScallopService::GetPoints(grpc::CallbackServerContext*
                                                     const v1::GetPointsRequest* request,
                                                     v1::GetPointsResponse* response) {
   return RunUnaryInlineFirst(
-      context, "GetPoints",
+      context, "GetPoints", shared_.Authorize(*context, *request),
       [this, request, response](RequestLog& log) {
         return AnswerGetPoints(*request, *response, log, /*may_block=*/false);
       },

@@ -15,6 +15,7 @@
 #include <boost/asio/thread_pool.hpp>
 #include <chrono>
 #include <iostream>
+#include <set>
 #include <thread>
 
 #include "server/malloc_tuning.h"
@@ -24,11 +25,25 @@
 #include "server/scallop_service.h"
 #include "server/server_config.h"
 #include "server/tls_credentials.h"
+#include "server/token_table.h"
 #include "server/world_registry.h"
 
 namespace {
 
 using scallop::server::ServerConfig;
+
+// Linking grpc++_reflection registers its plugin from a static initializer,
+// so not calling InitProtoReflectionServerBuilderPlugin leaves reflection on:
+// --no-reflection takes the plugin out of the builder instead.
+class WithoutReflection final : public grpc::ServerBuilderOption {
+ public:
+  void UpdateArguments(grpc::ChannelArguments*) override {}
+  void UpdatePlugins(std::vector<std::unique_ptr<grpc::ServerBuilderPlugin>>* plugins) override {
+    std::erase_if(*plugins, [](const std::unique_ptr<grpc::ServerBuilderPlugin>& plugin) {
+      return dynamic_cast<grpc::reflection::ProtoServerReflectionPlugin*>(plugin.get()) != nullptr;
+    });
+  }
+};
 
 // Defaults, then the --config file, then the other flags. Exit code on error.
 std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config) {
@@ -139,10 +154,6 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
 int main(int argc, char** argv) {
   ServerConfig config;
   if (std::optional<int> exit_code = ParseCommandLine(argc, argv, config)) return *exit_code;
-  if (!config.auth_tokens.empty()) {  // until the token check lands: never ignore it silently
-    std::cerr << "scallopd: auth_tokens: not supported yet\n";
-    return 2;
-  }
   // Before anything binds a port: a bad TLS file stops scallopd with its name.
   scallop::StatusOr<std::shared_ptr<grpc::ServerCredentials>> credentials =
       scallop::server::MakeServerCredentials(config);
@@ -157,6 +168,17 @@ int main(int argc, char** argv) {
       spdlog::level::from_str(config.log_level));  // validated: never "off" by mistake
 
   const scallop::server::WorldRegistry worlds(config.worlds, config.default_world);
+  std::optional<scallop::server::TokenTable> tokens;
+  if (!config.auth_tokens.empty()) {
+    const std::vector<std::string> names = worlds.names();
+    auto loaded = scallop::server::TokenTable::Load(
+        config.auth_tokens, std::set<std::string>(names.begin(), names.end()));
+    if (!loaded.ok()) {
+      std::cerr << "scallopd: " << loaded.status().message() << '\n';
+      return 2;
+    }
+    tokens = std::move(*loaded);
+  }
   const scallop::server::PageTokenCodec page_tokens(
       config.page_token_secret.empty() ? "scallop-page-token/" + worlds.Fingerprint()
                                        : config.page_token_secret);
@@ -169,7 +191,7 @@ int main(int argc, char** argv) {
   boost::asio::thread_pool request_pool(static_cast<size_t>(config.threads));
   scallop::server::RequestMetrics metrics;
   scallop::server::ScallopService service(config, worlds, page_tokens, engine, request_pool,
-                                          &metrics);
+                                          &metrics, tokens ? &*tokens : nullptr);
 
   // Bound before the gRPC port, so a bad --metrics-listen fails before the
   // server announces itself; announced after, so the address line stays first.
@@ -187,7 +209,7 @@ int main(int argc, char** argv) {
   }
 
   grpc::EnableDefaultHealthCheckService(true);
-  if (config.reflection) grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   int port = 0;
   // gRPC shares ports by default (SO_REUSEPORT): a second scallopd on a port
@@ -195,6 +217,7 @@ int main(int argc, char** argv) {
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, config.reuse_port ? 1 : 0);
   builder.AddListeningPort(config.listen, *credentials, &port);
   builder.RegisterService(&service);
+  if (!config.reflection) builder.SetOption(std::make_unique<WithoutReflection>());
   std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
   if (!server || port == 0) {
     spdlog::error("cannot listen on {} (in use? --reuse-port shares a port on purpose)",
@@ -209,14 +232,21 @@ int main(int argc, char** argv) {
     std::cout << "scallopd metrics on " << metrics_host << ':' << metrics_server->port()
               << std::endl;
   }
+  if (tokens && config.tls_cert.empty()) {
+    spdlog::warn(
+        "bearer tokens over plaintext can be read on the way: set tls_cert and tls_key, or "
+        "keep scallopd behind a proxy that terminates TLS");
+  }
   if (config.page_token_secret.empty()) {
     spdlog::warn(
         "page tokens are keyed from the world set, which anyone who knows the worlds can "
         "compute; set page_token_secret (or SCALLOPD_PAGE_TOKEN_SECRET) in production");
   }
-  spdlog::info("listening on {}:{}; default world {} ({}); {} threads", host, port,
-               config.default_world, config.worlds.at(config.default_world).Describe(),
-               config.threads);
+  spdlog::info(
+      "listening on {}:{}; default world {} ({}); {} threads; {}; {}", host, port,
+      config.default_world, config.worlds.at(config.default_world).Describe(), config.threads,
+      config.tls_client_ca.empty() ? (config.tls_cert.empty() ? "plaintext" : "TLS") : "mutual TLS",
+      tokens ? std::to_string(tokens->size()) + " tokens" : "no token needed");
 
   boost::asio::io_context signals_context;
   boost::asio::signal_set signals(signals_context, SIGINT, SIGTERM);

@@ -15,16 +15,24 @@ grpc::Status ServiceContext::CheckNearestRegions(int64_t regions, const char* fi
 }
 
 grpc::ServerUnaryReactor* ScallopService::RunUnary(grpc::CallbackServerContext* context,
-                                                   const char* method, UnaryWork work) {
+                                                   const char* method, const grpc::Status& access,
+                                                   UnaryWork work) {
   return RunUnaryInlineFirst(
-      context, method, [](RequestLog&) { return std::optional<grpc::Status>(); }, std::move(work));
+      context, method, access, [](RequestLog&) { return std::optional<grpc::Status>(); },
+      std::move(work));
 }
 
 grpc::ServerUnaryReactor* ScallopService::RunUnaryInlineFirst(grpc::CallbackServerContext* context,
-                                                              const char* method, InlineWork quick,
-                                                              UnaryWork work) {
+                                                              const char* method,
+                                                              const grpc::Status& access,
+                                                              InlineWork quick, UnaryWork work) {
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
   auto log = std::make_shared<RequestLog>(method, shared_.metrics);
+  if (!access.ok()) {
+    log->Finish(access);
+    reactor->Finish(access);
+    return reactor;
+  }
   if (!shared_.unary_in_flight.TryAdmit()) {
     const grpc::Status status = shared_.unary_in_flight.Refusal();
     log->Finish(status);

@@ -18,10 +18,12 @@ class ScallopService final : public v1::Scallop::CallbackService {
  public:
   // All references must outlive the service; the pool must outlive every call.
   // `metrics` (may be null: not recorded) counts every finished call.
+  // `tokens` (may be null: no token needed) are the bearer tokens calls need.
   ScallopService(const ServerConfig& config, const WorldRegistry& worlds,
                  const PageTokenCodec& page_tokens, PlaneEngine& engine,
-                 boost::asio::thread_pool& request_pool, RequestMetrics* metrics = nullptr)
-      : shared_(config, worlds, page_tokens, engine, request_pool, metrics) {}
+                 boost::asio::thread_pool& request_pool, RequestMetrics* metrics = nullptr,
+                 const TokenTable* tokens = nullptr)
+      : shared_(config, worlds, page_tokens, engine, request_pool, metrics, tokens) {}
 
   grpc::ServerUnaryReactor* GetPoints(grpc::CallbackServerContext* context,
                                       const v1::GetPointsRequest* request,
@@ -54,17 +56,18 @@ class ScallopService final : public v1::Scallop::CallbackService {
   // Work that can answer only if it need not block: nullopt means "not now".
   using InlineWork = std::function<std::optional<grpc::Status>(RequestLog& log)>;
 
-  // Admits the call (or sheds it with RESOURCE_EXHAUSTED), runs `work` on the
-  // request pool unless the client has gone, logs and finishes the call.
+  // Finishes the call with `access` when it is not OK (ServiceContext::Authorize);
+  // else admits the call (or sheds it with RESOURCE_EXHAUSTED), runs `work` on
+  // the request pool unless the client has gone, logs and finishes the call.
   grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context, const char* method,
-                                     UnaryWork work);
+                                     const grpc::Status& access, UnaryWork work);
   // As RunUnary, but first tries `quick` on gRPC's own thread, and hands the
   // call to the request pool (`work`) only when `quick` returns nullopt. A
   // warm query is a copy of tens of microseconds; the hop to the pool and
   // back costs more than that in context switches.
   grpc::ServerUnaryReactor* RunUnaryInlineFirst(grpc::CallbackServerContext* context,
-                                                const char* method, InlineWork quick,
-                                                UnaryWork work);
+                                                const char* method, const grpc::Status& access,
+                                                InlineWork quick, UnaryWork work);
 
   // GetPoints' answer; with may_block false, nullopt when the rectangle's
   // regions are not all cached (nothing is generated or waited on then).

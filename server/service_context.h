@@ -13,6 +13,7 @@
 #include "scallop/noise/nearest_lookup.h"
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/query_rect.h"
+#include "server/call_authorization.h"
 #include "server/in_flight_limit.h"
 #include "server/page_token.h"
 #include "server/request_log.h"
@@ -27,19 +28,34 @@ class ServiceContext {
  public:
   // All references must outlive the context; the pool must outlive every
   // call. `metrics` (may be null: not recorded) counts every finished call.
+  // `tokens` (may be null: no token needed) must outlive it too.
   ServiceContext(const ServerConfig& config, const WorldRegistry& worlds,
                  const PageTokenCodec& page_tokens, PlaneEngine& engine,
-                 boost::asio::thread_pool& request_pool, RequestMetrics* metrics)
+                 boost::asio::thread_pool& request_pool, RequestMetrics* metrics,
+                 const TokenTable* tokens)
       : config(config),
         worlds(worlds),
         page_tokens(page_tokens),
         engine(engine),
         request_pool(request_pool),
         metrics(metrics),
+        tokens(tokens),
         unary_in_flight(config.max_in_flight, "max_in_flight"),
         streams_in_flight(config.max_streams_in_flight, "max_streams_in_flight") {}
   ServiceContext(const ServiceContext&) = delete;
   ServiceContext& operator=(const ServiceContext&) = delete;
+
+  // The call's token, and whether it may use the world `request` asks for
+  // (call_authorization.h). Checked before admission, so callers without a
+  // token take no slot and learn nothing of the load.
+  template <typename Request>
+  grpc::Status Authorize(const grpc::ServerContextBase& context, const Request& request) const {
+    return AuthorizeCall(tokens, context, RequestedWorldOf(request, worlds.default_name()));
+  }
+  // The same for calls that concern no world (GetServerInfo, Follow's start).
+  grpc::Status Authorize(const grpc::ServerContextBase& context) const {
+    return AuthorizeCall(tokens, context, {});
+  }
 
   // The world and rectangle a query names, resolved, logged and checked by
   // the rectangle rule against `max_area` (named `limit_name` in errors):
@@ -76,6 +92,7 @@ class ServiceContext {
   PlaneEngine& engine;
   boost::asio::thread_pool& request_pool;
   RequestMetrics* const metrics;
+  const TokenTable* const tokens;
   // Nearest and NoiseGrid: search grids cached across requests, on engine's regions.
   NearestLookup nearest_lookup{engine};
   InFlightLimit unary_in_flight;    // unary calls (max_in_flight)

@@ -25,7 +25,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
         stall_seconds_(shared.config.stream_stall_seconds),
         stall_message_(std::make_shared<const std::string>(StallStatus().error_message())),
         timer_(context) {
-    if (!Admit()) return;
+    if (!Admit(shared.Authorize(*context, request))) return;
     if (grpc::Status status = Prepare(request); !status.ok()) {
       FinishWith(status);
       return;

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# End-to-end checks of the CLI against a scallopd on mutual TLS, with
-# certificates made here: the same points as `scallop plane`, refusals
-# without the right certificate, and scallopd refusing to start, with the
-# file named, on bad TLS settings.
+# End-to-end checks of the CLI against a scallopd on mutual TLS with bearer
+# tokens, certificates made here: the same points as `scallop plane`,
+# refusals without the right certificate or token, and scallopd refusing to
+# start, with the file named, on bad TLS or token settings.
 # Usage: cli_secure_test.sh path/to/scallop path/to/scallopd
 set -euo pipefail
 
@@ -25,13 +25,20 @@ bash "$(dirname "$0")/make_test_certificates.sh" "$work"
 tls_server=(--tls-cert "$work/server.crt" --tls-key "$work/server.key" --tls-client-ca "$work/ca.crt")
 tls_client=(--tls-ca "$work/ca.crt" --tls-cert "$work/client.crt" --tls-key "$work/client.key")
 
+printf '# test tokens\nall-worlds-token-0123456789\ncoast-only-token-0123456789 coast\n' >"$work/tokens"
+echo all-worlds-token-0123456789 >"$work/token"
+echo coast-only-token-0123456789 >"$work/coast-token"
+
 mkfifo "$work/address"
-"$scallopd" --listen 127.0.0.1:0 "${tls_server[@]}" >"$work/address" 2>"$work/server.log" &
+"$scallopd" --listen 127.0.0.1:0 "${tls_server[@]}" --auth-tokens "$work/tokens" \
+  --world coast:7:1:a3 >"$work/address" 2>"$work/server.log" &
 server_pid=$!
 read -r line <"$work/address"
 server=${line#scallopd listening on }
+# Health needs no token.
 run "$scallop" health --server "$server" --timeout 20 "${tls_client[@]}"
 expect_status 0 "health over mutual TLS"
+tls_client+=(--token-file "$work/token")
 
 rect=-10,-10,30,25
 run "$scallop" plane --seed 7 --rect "$rect"
@@ -41,6 +48,30 @@ expect_status 0 "points over mutual TLS"
 if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "points over TLS differ from plane"; fi
 run "$scallop" stream --server "$server" --seed 7 --rect "$rect" "${tls_client[@]}"
 if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "stream over TLS differs from plane"; fi
+
+# Tokens: missing, wrong, from SCALLOP_TOKEN, limited to a world.
+run "$scallop" points --server "$server" --seed 7 --rect "$rect" "${tls_client[@]:0:6}"
+expect_status 1 "points without a token"
+expect_err "UNAUTHENTICATED" "points without a token"
+run env SCALLOP_TOKEN=wrong-token-0123456789 "$scallop" points --server "$server" --seed 7 \
+  --rect "$rect" "${tls_client[@]:0:6}"
+expect_status 1 "points with a wrong token"
+expect_err "UNAUTHENTICATED" "points with a wrong token"
+run env SCALLOP_TOKEN=all-worlds-token-0123456789 "$scallop" points --server "$server" --seed 7 \
+  --rect "$rect" "${tls_client[@]:0:6}"
+expect_status 0 "points with SCALLOP_TOKEN"
+if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "points with SCALLOP_TOKEN differ from plane"; fi
+run "$scallop" points --server "$server" --world coast --rect "$rect" "${tls_client[@]:0:6}" \
+  --token-file "$work/coast-token"
+expect_status 0 "points of coast with the coast token"
+if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "coast points differ from plane"; fi
+run "$scallop" points --server "$server" --seed 7 --rect "$rect" "${tls_client[@]:0:6}" \
+  --token-file "$work/coast-token"
+expect_status 1 "an inline world with the coast token"
+expect_err "PERMISSION_DENIED" "an inline world with the coast token"
+run "$scallop" info --server "$server" "${tls_client[@]:0:6}" --token-file "$work/missing-token"
+expect_status 2 "missing --token-file"
+expect_err "--token-file: cannot read '$work/missing-token'" "missing --token-file"
 
 # Refused: plaintext, no client certificate, a client certificate of another CA.
 run "$scallop" info --server "$server" --timeout 5
@@ -80,5 +111,11 @@ expect_err "tls_key: '$work/client.key' is not the key of tls_cert" "--tls-key o
 run "$scallopd" --listen 127.0.0.1:0 "${tls_server[@]:0:4}" --tls-client-ca "$work/server.key"
 expect_status 2 "--tls-client-ca naming a key"
 expect_err "tls_client_ca: '$work/server.key' holds no PEM certificate" "--tls-client-ca naming a key"
+run "$scallopd" --listen 127.0.0.1:0 --auth-tokens "$work/missing-tokens"
+expect_status 2 "missing --auth-tokens"
+expect_err "auth_tokens: cannot read '$work/missing-tokens'" "missing --auth-tokens"
+run "$scallopd" --listen 127.0.0.1:0 --auth-tokens "$work/tokens"
+expect_status 2 "a token limited to an unconfigured world"
+expect_err "auth_tokens: $work/tokens:3: no configured world named 'coast'" "unconfigured world"
 
 report cli_secure_test

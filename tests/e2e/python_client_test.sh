@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The Python example client (examples/python) against a real scallopd: stubs
 # generated from our proto with Debian's tools, then its CSV compared byte for
-# byte with `scallop plane` for paged, streamed, inline and named worlds, and
-# a bad rectangle reported with the server's message and exit 1.
+# byte with `scallop plane` for paged, streamed, inline and named worlds and
+# over mutual TLS with a token; a bad rectangle, a refused handshake and a
+# missing or wrong token reported with exit 1.
 # Usage: python_client_test.sh SCALLOP_CLI SCALLOPD SOURCE_DIR
 set -euo pipefail
 cli=$1 scallopd=$2 source_dir=$3
@@ -44,20 +45,30 @@ client --rect=10,0,0,10 >/dev/null 2>"$work/err" || status=$?
 if [ "$status" != 1 ] || ! grep -q "INVALID_ARGUMENT: rect" "$work/err"; then
   echo "python client, inverted rect: exit $status, stderr: $(cat "$work/err")"; exit 1
 fi
-# Over mutual TLS, with certificates made here.
+# Over mutual TLS with a bearer token, certificates made here.
 bash "$source_dir/tests/e2e/make_test_certificates.sh" "$work"
+echo "python-test-token-0123456789" >"$work/tokens"
+echo "wrong-test-token-0123456789" >"$work/wrong-token"
 "$scallopd" --listen 127.0.0.1:0 --tls-cert "$work/server.crt" --tls-key "$work/server.key" \
-  --tls-client-ca "$work/ca.crt" >"$work/secure-address" 2>"$work/secure-log" &
+  --tls-client-ca "$work/ca.crt" --auth-tokens "$work/tokens" >"$work/secure-address" 2>"$work/secure-log" &
 secure_pid=$!
 for _ in $(seq 100); do grep -q listening "$work/secure-address" 2>/dev/null && break; sleep 0.1; done
 address=$(sed -n 's/^scallopd listening on //p' "$work/secure-address")
 [ -n "$address" ] || { echo "TLS scallopd did not start"; cat "$work/secure-log"; exit 1; }
 tls="--tls-ca $work/ca.crt --tls-cert $work/client.crt --tls-key $work/client.key"
-compare "mutual TLS" "$tls --seed 7 --rect=-20,-20,30,30" "--seed 7 --rect -20,-20,30,30"
-status=0
-client --tls-ca "$work/ca.crt" --timeout 5 --seed 7 --rect=0,0,10,10 >/dev/null 2>"$work/err" || status=$?
+SCALLOP_TOKEN=python-test-token-0123456789 compare "mutual TLS and a token" \
+  "$tls --seed 7 --rect=-20,-20,30,30" "--seed 7 --rect -20,-20,30,30"
+expect_failure() {  # expect_failure WHAT CODE CLIENT-ARGS...
+  local what=$1 code=$2 status=0
+  shift 2
+  client "$@" --timeout 5 --seed 7 --rect=0,0,10,10 >/dev/null 2>"$work/err" || status=$?
+  if [ "$status" != 1 ] || ! grep -q "$code" "$work/err"; then
+    echo "python client, $what: exit $status, stderr: $(cat "$work/err")"; exit 1
+  fi
+}
+read -ra tls_args <<<"$tls"
+expect_failure "TLS without a client certificate" UNAVAILABLE --tls-ca "$work/ca.crt"
+expect_failure "no token" UNAUTHENTICATED "${tls_args[@]}"
+expect_failure "a wrong token" UNAUTHENTICATED "${tls_args[@]}" --token-file "$work/wrong-token"
 kill "$secure_pid"
-if [ "$status" != 1 ] || ! grep -q "UNAVAILABLE" "$work/err"; then
-  echo "python client, TLS without a client certificate: exit $status, stderr: $(cat "$work/err")"; exit 1
-fi
-echo "python client: 4 comparisons with scallop plane and 2 error cases passed"
+echo "python client: 4 comparisons with scallop plane and 4 error cases passed"
