@@ -8,23 +8,22 @@ namespace scallop::server {
 grpc::ServerUnaryReactor* ScallopService::DescribeWorld(grpc::CallbackServerContext* context,
                                                         const v1::DescribeWorldRequest* request,
                                                         v1::DescribeWorldResponse* response) {
-  return RunUnary(context, "DescribeWorld", shared_.Authorize(*context, *request),
-                  [this, request, response](RequestLog& log) {
-                    ResolvedWorld resolved;
-                    if (grpc::Status status = shared_.worlds.Resolve(*request, resolved);
-                        !status.ok())
-                      return status;
-                    const World& world = resolved.world;
-                    log.set_world(world.Describe());
-                    const RegionLayout layout(world.min_distance());
-                    *response->mutable_world() = WorldToMessage(world);
-                    response->set_name(resolved.name);
-                    response->set_description(world.Describe());
-                    response->set_region_side(layout.side());
-                    response->set_precision_limit(layout.precision_limit());
-                    response->set_fingerprint(world.fingerprint());
-                    return grpc::Status::OK;
-                  });
+  const grpc::Status auth = shared_.Authorize(*context, *request);
+  return RunUnary(context, "DescribeWorld", auth, [this, request, response](RequestLog& log) {
+    ResolvedWorld resolved;
+    if (grpc::Status status = shared_.worlds.Resolve(*request, resolved); !status.ok())
+      return status;
+    const World& world = resolved.world;
+    log.set_world(world.Describe());
+    const RegionLayout layout(world.min_distance());
+    *response->mutable_world() = WorldToMessage(world);
+    response->set_name(resolved.name);
+    response->set_description(world.Describe());
+    response->set_region_side(layout.side());
+    response->set_precision_limit(layout.precision_limit());
+    response->set_fingerprint(world.fingerprint());
+    return grpc::Status::OK;
+  });
 }
 
 }  // namespace scallop::server
