@@ -36,11 +36,12 @@ void AddConnectionOptions(CLI::App& command, ConnectionArguments& arguments) {
   cert->needs(key);
   key->needs(cert);
   command.add_flag("--tls", arguments.tls, "TLS with the system's roots");
-  CLI::Option* token_file = command.add_option("--token-file", arguments.token_file,
-                                               "File whose first line is the bearer token");
+  // No `excludes`: SCALLOP_TOKEN in the environment counts as --token, and a
+  // --token-file given for one command should win over it, not clash.
+  command.add_option("--token-file", arguments.token_file,
+                     "File whose first line is the bearer token (wins over --token)");
   command.add_option("--token", arguments.token, "Bearer token (better: SCALLOP_TOKEN)")
-      ->envname("SCALLOP_TOKEN")
-      ->excludes(token_file);
+      ->envname("SCALLOP_TOKEN");
 }
 
 StatusOr<client::ConnectionOptions> ReadConnectionOptions(const ConnectionArguments& arguments) {

@@ -69,6 +69,11 @@ run "$scallop" points --server "$server" --seed 7 --rect "$rect" "${tls_client[@
   --token-file "$work/coast-token"
 expect_status 1 "an inline world with the coast token"
 expect_err "PERMISSION_DENIED" "an inline world with the coast token"
+# A --token-file wins over SCALLOP_TOKEN in the environment.
+run env SCALLOP_TOKEN=all-worlds-token-0123456789 "$scallop" points --server "$server" --seed 7 \
+  --rect "$rect" "${tls_client[@]:0:6}" --token-file "$work/coast-token"
+expect_status 1 "--token-file over SCALLOP_TOKEN"
+expect_err "PERMISSION_DENIED" "--token-file over SCALLOP_TOKEN"
 run "$scallop" info --server "$server" "${tls_client[@]:0:6}" --token-file "$work/missing-token"
 expect_status 2 "missing --token-file"
 expect_err "--token-file: cannot read '$work/missing-token'" "missing --token-file"
