@@ -248,17 +248,22 @@ TEST(E2eLoadSheddingTest, UnaryCallsBeyondMaxInFlightGetResourceExhausted) {
   auto server = ScallopdProcess::Start({"--max-in-flight", "1", "--threads", "1"});
   ASSERT_NE(server, nullptr);
   client::ScallopClient client = server->Client();
-  // A cold Verify of the largest area holds the only unary slot for seconds
-  // on one thread; the event waited for is a refusal while it runs.
+  // A cold Verify of nearly the largest area holds the only unary slot for
+  // seconds on one thread; the event waited for is a refusal while it runs.
+  // 990 d, not 1000: grown by its 2 d halo, 1000 d is over max_verify_area
+  // and was refused at once, so the test passed only when a GetPoints
+  // happened to arrive in that instant.
   v1::VerifyRequest slow;
   *slow.mutable_world() = WorldToMessage(ValidWorld({.seed = 3}));
-  *slow.mutable_rect() = RectToMessage({0, 0, 1000, 1000});
+  *slow.mutable_rect() = RectToMessage({0, 0, 990, 990});
   std::atomic<bool> verified{false};
+  grpc::Status verify_status;
   std::thread holder([&] {
     v1::VerifyResponse report;
     // Retried while our own GetPoints holds the slot at the moment it arrives.
-    while (client.Verify(slow, report).error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
-    }
+    do {
+      verify_status = client.Verify(slow, report);
+    } while (verify_status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED);
     verified = true;
   });
   grpc::Status shed;
@@ -267,6 +272,7 @@ TEST(E2eLoadSheddingTest, UnaryCallsBeyondMaxInFlightGetResourceExhausted) {
     shed = client.GetPoints(Request(WorldSpec{}, {0, 0, 5, 5}), response);
   }
   holder.join();
+  EXPECT_TRUE(verify_status.ok()) << client::DescribeStatus(verify_status);
   EXPECT_EQ(shed.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED)
       << "the Verify ended before any call was refused";
   EXPECT_NE(shed.error_message().find("max_in_flight"), std::string::npos);
