@@ -3,32 +3,13 @@
 // follows the regions the samples lie in (max_nearest_regions, checked first).
 #include <optional>
 
+#include "noise_messages.h"
 #include "scallop/noise/noise_grid.h"
 #include "server/scallop_service.h"
 #include "server/status_mapping.h"
 #include "world_messages.h"
 
 namespace scallop::server {
-namespace {
-
-std::optional<NoiseChannel> ChannelFromMessage(v1::NoiseChannel channel) {
-  switch (channel) {
-    case v1::NOISE_CHANNEL_F1:
-      return NoiseChannel::kF1;
-    case v1::NOISE_CHANNEL_F2:
-      return NoiseChannel::kF2;
-    case v1::NOISE_CHANNEL_F2_MINUS_F1:
-      return NoiseChannel::kF2MinusF1;
-    case v1::NOISE_CHANNEL_ID:
-      return NoiseChannel::kId;
-    case v1::NOISE_CHANNEL_CELL_VALUE:
-      return NoiseChannel::kCellValue;
-    default:
-      return std::nullopt;
-  }
-}
-
-}  // namespace
 
 grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext* context,
                                                     const v1::NoiseGridRequest* request,
@@ -40,7 +21,7 @@ grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext*
       return status;
     const World& world = resolved.world;
     log.set_world(world.Describe());
-    const std::optional<NoiseChannel> channel = ChannelFromMessage(request->channel());
+    const std::optional<NoiseChannel> channel = NoiseChannelFromMessage(request->channel());
     if (!channel) {
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                           "channel: required, one of NOISE_CHANNEL_F1, _F2, _F2_MINUS_F1, _ID, "

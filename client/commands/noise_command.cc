@@ -13,6 +13,7 @@
 #include "client/options/rect_option.h"
 #include "client/options/remote_options.h"
 #include "client/options/world_options.h"
+#include "noise_messages.h"
 #include "scallop/noise/noise_grid.h"
 #include "scallop/random/rng.h"
 
@@ -89,22 +90,6 @@ Image8 Render(const NoiseImage& noise, NoiseChannel channel, double d) {
   return image;
 }
 
-v1::NoiseChannel ChannelToMessage(NoiseChannel channel) {
-  switch (channel) {
-    case NoiseChannel::kF1:
-      return v1::NOISE_CHANNEL_F1;
-    case NoiseChannel::kF2:
-      return v1::NOISE_CHANNEL_F2;
-    case NoiseChannel::kF2MinusF1:
-      return v1::NOISE_CHANNEL_F2_MINUS_F1;
-    case NoiseChannel::kId:
-      return v1::NOISE_CHANNEL_ID;
-    case NoiseChannel::kCellValue:
-      return v1::NOISE_CHANNEL_CELL_VALUE;
-  }
-  return v1::NOISE_CHANNEL_UNSPECIFIED;
-}
-
 int RunNoise(const NoiseArguments& arguments) {
   StatusOr<Rect> rect = ParseRect(arguments.world.rect, "--rect");
   if (!rect.ok()) return ReportBadArguments("noise", rect.status());
@@ -131,7 +116,7 @@ int RunNoise(const NoiseArguments& arguments) {
     request.set_step(spec->step);
     request.set_width(spec->width);
     request.set_height(spec->height);
-    request.set_channel(ChannelToMessage(spec->channel));
+    request.set_channel(NoiseChannelToMessage(spec->channel));
     StatusOr<client::ScallopClient> connected =
         ConnectTo(arguments.remote.server, arguments.remote.connection);
     if (!connected.ok()) return ReportBadArguments("noise", connected.status());
