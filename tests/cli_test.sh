@@ -5,8 +5,6 @@
 set -euo pipefail
 
 scallop=${1:?usage: cli_test.sh path/to/scallop}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 # shellcheck source=shell_checks.sh
 source "$(dirname "$0")/shell_checks.sh"
 

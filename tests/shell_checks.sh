@@ -1,5 +1,14 @@
-# The counters and runners the shell tests share; source it after setting
-# $work (a scratch folder). End with `report NAME`, whose status is the test's.
+# The scratch folder, counters and runners the shell tests share. Sourcing it
+# makes $work and, on exit, kills the server whose pid a test put in
+# $server_pid and removes $work. End with `report NAME`, whose status is the test's.
+
+work=$(mktemp -d)
+server_pid=
+cleanup() {
+  if [ -n "$server_pid" ]; then kill "$server_pid" 2>/dev/null || true; fi
+  rm -rf "$work"
+}
+trap cleanup EXIT
 
 passed=0
 failed=0

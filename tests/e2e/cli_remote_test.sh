@@ -7,13 +7,6 @@ set -euo pipefail
 
 scallop=${1:?usage: cli_remote_test.sh path/to/scallop path/to/scallopd}
 scallopd=${2:?usage: cli_remote_test.sh path/to/scallop path/to/scallopd}
-work=$(mktemp -d)
-server_pid=
-cleanup() {
-  if [ -n "$server_pid" ]; then kill "$server_pid" 2>/dev/null || true; fi
-  rm -rf "$work"
-}
-trap cleanup EXIT
 # shellcheck source=../shell_checks.sh
 source "$(dirname "$0")/../shell_checks.sh"
 
