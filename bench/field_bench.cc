@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "bench/square_sampling.h"
 #include "scallop/field/radius_field.h"
 #include "scallop/field/value_noise.h"
 #include "scallop/sampling/field_sampler.h"
@@ -83,19 +84,7 @@ void BM_FieldBridson(benchmark::State& state) {
 
 // The control: uniform A3 at d = 1 on a square of about the same point count.
 void BM_UniformA3(benchmark::State& state) {
-  SamplerOptions options;
-  options.algorithm = Algorithm::kA3;
-  const double side = std::sqrt(static_cast<double>(state.range(0)) / 0.8);
-  options.domain.rect = {0.0, 0.0, side, side};
-  options.min_distance = 1.0;
-  int64_t produced = 0;
-  for (auto _ : state) {
-    auto points = Sample(options);
-    produced = static_cast<int64_t>(points->size());
-    benchmark::DoNotOptimize(points->data());
-    ++options.seed;
-  }
-  Report(state, produced);
+  Report(state, SampleSquares(state, Algorithm::kA3, 0.8));
 }
 
 BENCHMARK(BM_UniformA3)->Name("uniform_a3_smoke")->Arg(10000)->Unit(benchmark::kMillisecond);

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <vector>
 
+#include "bench/square_sampling.h"
 #include "scallop/geometry/scalloped_region.h"
 #include "scallop/random/rng.h"
 #include "scallop/sampling/sampler.h"
@@ -105,18 +106,7 @@ void BM_RegionCopy(benchmark::State& state) {
 
 // A whole A1 run in a square expected to hold about 100k points (d = 1, r' = 2d).
 void BM_A1(benchmark::State& state) {
-  SamplerOptions options;
-  options.algorithm = Algorithm::kA1;
-  const double side = std::sqrt(static_cast<double>(state.range(0)) / 0.7);
-  options.domain.rect = {0, 0, side, side};
-  options.min_distance = 1.0;
-  int64_t produced = 0;
-  for (auto _ : state) {
-    auto points = Sample(options);
-    produced = static_cast<int64_t>(points->size());
-    benchmark::DoNotOptimize(points->data());
-    ++options.seed;
-  }
+  const int64_t produced = SampleSquares(state, Algorithm::kA1, 0.7);
   state.counters["points"] = static_cast<double>(produced);
   state.counters["points_per_second"] = benchmark::Counter(
       static_cast<double>(produced), benchmark::Counter::kIsIterationInvariantRate);
