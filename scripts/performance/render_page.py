@@ -146,13 +146,19 @@ def infinite_plane(run):
     return "".join(out)
 
 
-def cold_tiles(run):
-    text = read_text("cold_tile_latency.txt")
-    if not text:
+def text_section(run, key, description, keep=lambda line: bool(line.strip())):
+    """A section that quotes the lines `keep` selects from KEY.txt, indented."""
+    text = read_text(f"{key}.txt")
+    lines = [line.strip() for line in (text or "").splitlines() if keep(line)]
+    if not lines:
         return MISSING
-    return "".join([command_block(run, "cold_tile_latency"), "\n",
-                    "Thread CPU time of the engine alone for cold 64 d tiles at random places:\n\n",
-                    "    " + text.strip() + "\n"])
+    return "".join([command_block(run, key), "\n", description, "\n"] +
+                   [f"    {line}\n" for line in lines])
+
+
+def cold_tiles(run):
+    return text_section(run, "cold_tile_latency",
+                        "Thread CPU time of the engine alone for cold 64 d tiles at random places:\n")
 
 
 def nearest(run):
@@ -199,13 +205,8 @@ def deterministic_math(run):
 
 
 def verifier(run):
-    text = read_text("verifier.txt")
-    lines = [line for line in (text or "").splitlines() if " points in " in line]
-    if not lines:
-        return MISSING
-    return "".join([command_block(run, "verifier"), "\n",
-                    "About a million spaced points through the CGAL verifier:\n\n"] +
-                   [f"    {line.strip()}\n" for line in lines])
+    return text_section(run, "verifier", "About a million spaced points through the CGAL verifier:\n",
+                        keep=lambda line: " points in " in line)
 
 
 def follow(run):
@@ -230,18 +231,15 @@ def follow(run):
 
 
 def service_load(run):
-    text = read_text("load.txt")
-    if not text:
-        return MISSING
-    table = [line for line in text.splitlines() if line and not line.startswith("#")]
-    return "".join([command_block(run, "load"), "\n",
-                    "scallopd (`--threads 2 --cache-megabytes 64`) and `null_server` (real responses\n"
-                    "serialized once: the transport's limit) side by side on loopback, driven by\n"
-                    "`load_generator` with 64 d tiles of A3 worlds: warm (inside a 256 d square\n"
-                    "queried once before) and cold (a fresh world, tiles 1024 d apart). Targets\n"
-                    "(issue 23): warm at least 0.85x the null server in every run; cold p99 for one\n"
-                    "stream at most 5 ms.\n\n"] +
-                   [f"    {line}\n" for line in table])
+    return text_section(
+        run, "load",
+        "scallopd (`--threads 2 --cache-megabytes 64`) and `null_server` (real responses\n"
+        "serialized once: the transport's limit) side by side on loopback, driven by\n"
+        "`load_generator` with 64 d tiles of A3 worlds: warm (inside a 256 d square\n"
+        "queried once before) and cold (a fresh world, tiles 1024 d apart). Targets\n"
+        "(issue 23): warm at least 0.85x the null server in every run; cold p99 for one\n"
+        "stream at most 5 ms.\n",
+        keep=lambda line: bool(line.strip()) and not line.startswith("#"))
 
 
 def main():
