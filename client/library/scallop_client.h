@@ -99,4 +99,9 @@ class ScallopClient {
 // "INVALID_ARGUMENT: rect.x0: must be finite", for messages on stderr.
 std::string DescribeStatus(const grpc::Status& status);
 
+// How long the server asks the client to wait before calling again, in
+// seconds: the google.rpc.RetryInfo of a rate-limited call's status details
+// (RESOURCE_EXHAUSTED); -1 when the status carries none.
+double RetryAfterSeconds(const grpc::Status& status);
+
 }  // namespace scallop::client
