@@ -27,7 +27,7 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
           return status;
         }
         // The rectangle and its halo generated a block at a time, so a client
-        // that goes stops the generation (the verifier itself runs to its end).
+        // that goes stops the generation, and then the verifier too.
         // A rectangle the rule refuses is left to VerifyWorldRect to report.
         const QueryLimit limit{.max_area = shared_.config.max_verify_area,
                                .name = "max_verify_area"};
@@ -40,7 +40,8 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
             return status;
           }
         }
-        StatusOr<VerifyReport> report = VerifyWorldRect(shared_.engine, world, rect, limit);
+        StatusOr<VerifyReport> report = VerifyWorldRect(shared_.engine, world, rect, limit,
+                                                        /*inside=*/nullptr, StopWhenGone(context));
         if (!report.ok()) return ToGrpcStatus(report.status());
         const double max_abs =
             std::max({std::abs(rect.x0), std::abs(rect.x1), std::abs(rect.y0), std::abs(rect.y1)}) +
