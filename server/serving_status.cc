@@ -4,6 +4,10 @@
 
 namespace scallop::server {
 
+ServingStatus::ServingStatus(grpc::HealthCheckServiceInterface* health) : health_(health) {
+  health_->SetServingStatus(kLivenessService, true);
+}
+
 void ServingStatus::SetSaturated(bool saturated) {
   std::lock_guard lock(mutex_);
   if (saturated == saturated_) return;
@@ -21,6 +25,10 @@ void ServingStatus::SetDraining() {
   Apply();
 }
 
-void ServingStatus::Apply() { health_->SetServingStatus(!draining_ && !saturated_); }
+void ServingStatus::Apply() {
+  // Sets every service gRPC knows, "liveness" too, which stays SERVING.
+  health_->SetServingStatus(!draining_ && !saturated_);
+  health_->SetServingStatus(kLivenessService, true);
+}
 
 }  // namespace scallop::server

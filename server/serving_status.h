@@ -1,7 +1,9 @@
 // The health check's answer, as balancers and Kubernetes readiness read it:
 // NOT_SERVING from SIGTERM on (draining, for good) and while the unary
 // budget is saturated (admission_budget.h; when not_serving_when_saturated),
-// SERVING otherwise. Applies to every service name of gRPC's health service.
+// SERVING otherwise: the answer for the server as a whole (service "").
+// The service "liveness" says SERVING as long as the process answers: what a
+// liveness probe must ask, so that a saturated replica is not restarted.
 #pragma once
 
 #include <grpcpp/health_check_service_interface.h>
@@ -12,8 +14,10 @@ namespace scallop::server {
 
 class ServingStatus {
  public:
+  static constexpr const char* kLivenessService = "liveness";
+
   // `health` must outlive this. Starts SERVING.
-  explicit ServingStatus(grpc::HealthCheckServiceInterface* health) : health_(health) {}
+  explicit ServingStatus(grpc::HealthCheckServiceInterface* health);
 
   void SetSaturated(bool saturated);
   void SetDraining();

@@ -134,12 +134,15 @@ grpc::Status ScallopClient::NoiseGrid(const v1::NoiseGridRequest& request,
   return stub_->NoiseGrid(&context, request, &response);
 }
 
-grpc::Status ScallopClient::CheckHealth(bool& serving, const CallOptions& options) {
+grpc::Status ScallopClient::CheckHealth(bool& serving, const CallOptions& options,
+                                        const std::string& service) {
   grpc::ClientContext context;
   Configure(context, options);
+  grpc::health::v1::HealthCheckRequest request;
+  request.set_service(service);
   grpc::health::v1::HealthCheckResponse response;
-  const grpc::Status status = grpc::health::v1::Health::NewStub(channel_)->Check(
-      &context, grpc::health::v1::HealthCheckRequest(), &response);
+  const grpc::Status status =
+      grpc::health::v1::Health::NewStub(channel_)->Check(&context, request, &response);
   serving = status.ok() && response.status() == grpc::health::v1::HealthCheckResponse::SERVING;
   return status;
 }

@@ -52,12 +52,15 @@ grpc::Status SmallGetPoints(client::ScallopClient& client) {
   return client.GetPoints(request, response, kCall);
 }
 
-grpc::health::v1::HealthCheckResponse::ServingStatus Health(const client::ScallopClient& client) {
+grpc::health::v1::HealthCheckResponse::ServingStatus Health(const client::ScallopClient& client,
+                                                            const std::string& service = "") {
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + seconds(10));
+  grpc::health::v1::HealthCheckRequest request;
+  request.set_service(service);
   grpc::health::v1::HealthCheckResponse health;
   const grpc::Status status =
-      grpc::health::v1::Health::NewStub(client.channel())->Check(&context, {}, &health);
+      grpc::health::v1::Health::NewStub(client.channel())->Check(&context, request, &health);
   return status.ok() ? health.status() : grpc::health::v1::HealthCheckResponse::UNKNOWN;
 }
 
@@ -162,6 +165,8 @@ TEST(E2eClientLimitsTest, CostlyCallsSaturateTheBudgetAndHealthSaysSo) {
       WaitFor([&] { return Health(client) == grpc::health::v1::HealthCheckResponse::NOT_SERVING; },
               seconds(120));
   EXPECT_TRUE(saw_not_serving);
+  // Busy, not dead: a liveness probe must not restart it.
+  EXPECT_EQ(Health(client, "liveness"), grpc::health::v1::HealthCheckResponse::SERVING);
   // A call of one region fits beside the one big call in flight.
   const grpc::Status small = SmallGetPoints(client);
   EXPECT_TRUE(small.ok()) << client::DescribeStatus(small);
