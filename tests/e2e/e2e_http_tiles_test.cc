@@ -382,6 +382,21 @@ TEST(E2eHttpTileLimitsTest, TilesShareAdmissionWithGrpc) {
   EXPECT_EQ(Fetch(address, http::verb::get, tile).status, 200);
 }
 
+// The YAML keys: http_listen starts the listener, http_max_age_seconds is
+// the tiles' max-age.
+TEST(E2eHttpTileConfigTest, YamlStartsTheListenerAndSetsMaxAge) {
+  const std::string config = ::testing::TempDir() + "e2e_http_tiles.yaml";
+  std::ofstream(config) << "http_listen: 127.0.0.1:0\nhttp_max_age_seconds: 600\n"
+                        << "max_http_connections: 8\n";
+  auto server = ScallopdProcess::Start({"--config", config});
+  ASSERT_NE(server, nullptr);
+  const std::string address = HttpAddress(*server);
+  const HttpAnswer tile = Fetch(address, http::verb::get, "/v1/worlds/default/tiles/-1/-1.bin");
+  EXPECT_EQ(tile.status, 200);
+  EXPECT_EQ(tile.headers.at("cache-control"), "public, max-age=600, immutable");
+  std::remove(config.c_str());
+}
+
 TEST(E2eHttpTileAuthTest, TilesNeedATokenForTheirWorld) {
   const std::string tokens = ::testing::TempDir() + "e2e_http_tiles_tokens";
   std::ofstream(tokens) << "any-world-token-0123456789\ncoast-only-token-0123456789 coast\n";
