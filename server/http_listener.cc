@@ -4,14 +4,17 @@
 
 #include <spdlog/spdlog.h>
 
+#include <atomic>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <boost/asio/strand.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 namespace scallop::server {
 namespace {
@@ -39,11 +42,12 @@ struct Gate {
 // One connection: read a request, hand it to the handler, write its answer,
 // repeat while keep-alive. The session owns itself through the shared_ptrs
 // its pending operations hold (a read, a write, or the answer timer while
-// the handler works), and counts itself in `open` (on the single thread).
+// the handler works), and counts itself in `open`. Its socket's executor is
+// a strand, so its handlers never run at once on the listener's threads.
 class Session : public std::enable_shared_from_this<Session> {
  public:
   Session(tcp::socket socket, const HttpListener::Handler& handler, std::shared_ptr<Gate> gate,
-          int& open)
+          std::atomic<int>& open)
       : stream_(std::move(socket)),
         answer_timer_(stream_.get_executor()),
         handler_(handler),
@@ -112,7 +116,7 @@ class Session : public std::enable_shared_from_this<Session> {
   asio::steady_timer answer_timer_;
   const HttpListener::Handler& handler_;
   std::shared_ptr<Gate> gate_;
-  int& open_;
+  std::atomic<int>& open_;
   uint64_t serial_ = 0;    // of the request being answered
   uint64_t answered_ = 0;  // the last serial written
   boost::beast::flat_buffer buffer_;
@@ -125,44 +129,52 @@ class Session : public std::enable_shared_from_this<Session> {
 struct HttpListener::State {
   // Declared before `context`, whose destruction destroys the sessions still
   // pending, which then uncount themselves here.
-  int open_connections = 0;  // touched only on `thread`
+  std::atomic<int> open_connections{0};
   int max_connections = 16;
   std::string name;
   std::shared_ptr<Gate> gate = std::make_shared<Gate>();
   Handler handler;
-  asio::io_context context{1};
+  asio::io_context context;
   tcp::acceptor acceptor{context};
   asio::steady_timer retry{context};
-  std::thread thread;
+  std::vector<std::thread> threads;
 
   // Every path re-arms (but Stop's): a handler that returned on an error
   // left the endpoint dead for the life of the process.
   void Accept() {
-    acceptor.async_accept([this](boost::beast::error_code error, tcp::socket socket) {
-      if (error == asio::error::operation_aborted) return;  // closed by Stop
-      if (error) {
-        spdlog::warn("{}: accept failed ({}); retrying in {} ms", name, error.message(),
-                     kAcceptRetryDelay.count());
-        retry.expires_after(kAcceptRetryDelay);
-        retry.async_wait([this](boost::beast::error_code wait_error) {
-          if (!wait_error) Accept();
+    // Each connection on a strand of its own: sessions run in parallel on
+    // the threads, each one's handlers in order.
+    acceptor.async_accept(
+        asio::make_strand(context), [this](boost::beast::error_code error, tcp::socket socket) {
+          if (error == asio::error::operation_aborted) return;  // closed by Stop
+          if (error) {
+            spdlog::warn("{}: accept failed ({}); retrying in {} ms", name, error.message(),
+                         kAcceptRetryDelay.count());
+            retry.expires_after(kAcceptRetryDelay);
+            retry.async_wait([this](boost::beast::error_code wait_error) {
+              if (!wait_error) Accept();
+            });
+            return;
+          }
+          if (open_connections >= max_connections) {
+            boost::beast::error_code ignored;
+            socket.close(ignored);  // over the cap: its descriptor back at once
+          } else {
+            // An answer is written whole at once: no reason to hold its tail
+            // back for an ACK (Nagle), which costs a delayed ACK's 40 ms.
+            boost::beast::error_code ignored;
+            socket.set_option(tcp::no_delay(true), ignored);
+            std::make_shared<Session>(std::move(socket), handler, gate, open_connections)->Read();
+          }
+          Accept();
         });
-        return;
-      }
-      if (open_connections >= max_connections) {
-        boost::beast::error_code ignored;
-        socket.close(ignored);  // over the cap: its descriptor back at once
-      } else {
-        std::make_shared<Session>(std::move(socket), handler, gate, open_connections)->Read();
-      }
-      Accept();
-    });
   }
 };
 
 StatusOr<std::unique_ptr<HttpListener>> HttpListener::Start(const std::string& listen,
                                                             const std::string& name,
-                                                            Handler handler, int max_connections) {
+                                                            Handler handler, int max_connections,
+                                                            int threads) {
   const std::string flag = "--" + name + "-listen";
   const size_t colon = listen.rfind(':');
   if (colon == std::string::npos) {
@@ -197,7 +209,9 @@ StatusOr<std::unique_ptr<HttpListener>> HttpListener::Start(const std::string& l
     return InvalidArgument(flag + ": cannot listen on " + listen + ": " + error.message());
   }
   state->Accept();
-  state->thread = std::thread([context = &state->context] { context->run(); });
+  for (int k = 0; k < std::max(1, threads); ++k) {
+    state->threads.emplace_back([context = &state->context] { context->run(); });
+  }
   return std::unique_ptr<HttpListener>(new HttpListener(std::move(state)));
 }
 
@@ -212,9 +226,10 @@ void HttpListener::Stop() {
     const std::lock_guard lock(state_->gate->mutex);
     state_->gate->open = false;
   }
-  if (!state_->thread.joinable()) return;
+  if (state_->threads.empty()) return;
   state_->context.stop();
-  state_->thread.join();
+  for (std::thread& thread : state_->threads) thread.join();
+  state_->threads.clear();
 }
 
 }  // namespace scallop::server

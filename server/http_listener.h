@@ -1,5 +1,5 @@
 // A small HTTP/1.1 server on Boost.Beast, shared by the Prometheus endpoint
-// and the tile endpoint: one Asio thread accepts and parses, a handler
+// and the tile endpoint: Asio threads of its own accept and parse, a handler
 // answers (at once, or later from another thread). Connections are capped
 // and accepting resumes after errors (out of file descriptors), so idle or
 // abandoned connections cannot take the listener down for good.
@@ -24,7 +24,8 @@ class HttpListener {
   // The listener fills in version, keep-alive, Server and Content-Length, and
   // drops the body of an answer to HEAD.
   using Respond = std::function<void(Response)>;
-  // Runs on the listener's thread, so it must not block: slow work goes to a
+  // Runs on one of the listener's threads (for many connections at once), so
+  // it must not block: slow work goes to a
   // pool, which calls `respond` when done. `request` lives only for the call:
   // copy what the work needs. The connection reads its next
   // request only after the answer is written.
@@ -35,16 +36,17 @@ class HttpListener {
   // that is closed as soon as it is accepted (the client retries) rather than
   // left to hold a file descriptor. `name` starts its log lines ("metrics:
   // accept failed ...") and, as "--NAME-listen", its errors: INVALID_ARGUMENT
-  // when the address cannot be parsed or bound.
+  // when the address cannot be parsed or bound. `threads` run the sockets
+  // and the handler (a connection's requests in order, connections at once).
   static StatusOr<std::unique_ptr<HttpListener>> Start(const std::string& listen,
                                                        const std::string& name, Handler handler,
-                                                       int max_connections);
+                                                       int max_connections, int threads = 1);
   ~HttpListener();
   HttpListener(const HttpListener&) = delete;
   HttpListener& operator=(const HttpListener&) = delete;
 
   int port() const;
-  // Stops accepting and joins the thread; idempotent. Answers still pending
+  // Stops accepting and joins the threads; idempotent. Answers still pending
   // in a pool are dropped, so stop the pool first when they matter.
   void Stop();
 

@@ -227,7 +227,7 @@ int main(int argc, char** argv) {
                     const scallop::server::HttpListener::Respond& respond) {
           http_api.Handle(request, respond);
         },
-        config.max_http_connections);
+        config.max_http_connections, config.threads);
     if (!started.ok()) {
       std::cerr << "scallopd: " << started.status().message() << '\n';
       return 2;

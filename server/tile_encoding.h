@@ -18,7 +18,7 @@ namespace scallop::server {
 // Bumped whenever any format's bytes change for the same points (a field
 // added, the PNG drawn otherwise): it is part of every ETag, so caches never
 // mix an old rendering with a new one.
-inline constexpr int kTileFormatVersion = 1;
+inline constexpr int kTileFormatVersion = 2;
 
 // Which world and tile the points are, and the points in query order.
 struct Tile {
