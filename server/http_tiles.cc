@@ -157,17 +157,22 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
         if (status.error_code() == grpc::StatusCode::CANCELLED) {
           status = {grpc::StatusCode::DEADLINE_EXCEEDED, "tile: not generated within 30 s"};
         }
-        StatusOr<std::vector<RegionHandle>> regions =
-            status.ok() ? shared_.engine.Regions(tile.world, reach)
-                        : StatusOr<std::vector<RegionHandle>>(Status(StatusCode::kInternal, ""));
-        if (status.ok() && !regions.ok()) status = ToGrpcStatus(regions.status());
+        std::vector<RegionHandle> regions;
+        if (status.ok()) {
+          StatusOr<std::vector<RegionHandle>> resolved = shared_.engine.Regions(tile.world, reach);
+          if (resolved.ok()) {
+            regions = std::move(*resolved);
+          } else {
+            status = ToGrpcStatus(resolved.status());
+          }
+        }
         if (!status.ok()) {
           shared_.unary_in_flight.Release();
           log->Finish(status);
           respond(HttpErrorResponse(status));
           return;
         }
-        finish(*regions, std::move(tile), std::move(response), respond);
+        finish(regions, std::move(tile), std::move(response), respond);
       });
 }
 
