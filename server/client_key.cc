@@ -15,12 +15,15 @@ std::string PeerKey(const std::string& peer) {
   return "peer:" + (has_port && colon > 5 ? peer.substr(0, colon) : peer);
 }
 
+std::string TokenKey(std::string_view authorization) {
+  return fmt::format("token:{:016x}", std::hash<std::string_view>{}(authorization));
+}
+
 std::string ClientKey(const grpc::ServerContextBase& context, bool tokens_checked) {
   if (tokens_checked) {
     const auto& metadata = context.client_metadata();
     if (const auto header = metadata.find("authorization"); header != metadata.end()) {
-      const std::string_view value(header->second.data(), header->second.size());
-      return fmt::format("token:{:016x}", std::hash<std::string_view>{}(value));
+      return TokenKey(std::string_view(header->second.data(), header->second.size()));
     }
   }
   return PeerKey(context.peer());

@@ -8,6 +8,7 @@
 #include <grpcpp/server_context.h>
 
 #include <string>
+#include <string_view>
 
 namespace scallop::server {
 
@@ -17,5 +18,8 @@ std::string ClientKey(const grpc::ServerContextBase& context, bool tokens_checke
 
 // The same from a peer string as gRPC gives it ("ipv4:10.0.0.7:51234").
 std::string PeerKey(const std::string& peer);
+
+// "token:<hash>" for the value of an authorization header.
+std::string TokenKey(std::string_view authorization);
 
 }  // namespace scallop::server

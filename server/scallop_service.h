@@ -55,6 +55,9 @@ class ScallopService final : public v1::Scallop::CallbackService {
   void OnSaturationChange(std::function<void(bool)> callback) {
     shared_.unary_in_flight.OnSaturationChange(std::move(callback));
   }
+  // What calls share, for the HTTP tiles (http_api.h), which take the same
+  // slots, engine and tokens.
+  ServiceContext& context() { return shared_; }
 
  private:
   using UnaryWork = std::function<grpc::Status(RequestLog& log)>;
