@@ -13,6 +13,7 @@ packages=(
   libyaml-cpp-dev libfftw3-dev libpng-dev libssl-dev
   python3 python3-grpcio python3-protobuf python3-yaml
   openssl  # the tests make their TLS certificates with it
+  nginx    # e2e_nginx_test runs deploy/nginx/ in front of three replicas
   # scripts/test-portability.sh: a Clang build, and an aarch64 cross build of
   # the core and its golden tests (arm64 multiarch libraries) run under qemu.
   clang g++-aarch64-linux-gnu qemu-user
