@@ -332,7 +332,7 @@ TEST_F(E2eNginxTest, ProxyTimeoutsOutlastTheServers) {
 // unary call answers as the direct server does.
 TEST_F(E2eNginxTest, UnaryCallsSurviveAReplicaKilledAndRestarted) {
   client::ScallopClient nginx = ThroughNginx(), direct = direct_->Client();
-  const KilledCall killed = KillReplicaUnderCall(nginx, {2000, 2000, 2250, 2250});
+  const KilledCall killed = KillReplicaUnderCall(nginx, {2000, 2000, 2160, 2160});
   ASSERT_GE(killed.victim, 0) << "the slow call never showed in a replica's metrics";
   const int victim = killed.victim;
   const std::string victim_address = replicas_[victim]->address();
@@ -413,7 +413,7 @@ TEST_F(E2eNginxTest, ClientLibraryBalancesAndRetriesWithoutAProxy) {
     EXPECT_GT(CallsServed(r, "DescribeWorld"), before[r]) << "replica " << r;
   }
 
-  const KilledCall killed = KillReplicaUnderCall(balanced, {-3000, -3000, -2750, -2750});
+  const KilledCall killed = KillReplicaUnderCall(balanced, {-3000, -3000, -2840, -2840});
   ASSERT_GE(killed.victim, 0) << "the slow call never showed in a replica's metrics";
   EXPECT_TRUE(killed.status.ok()) << client::DescribeStatus(killed.status);
   EXPECT_TRUE(killed.same_as_direct);
@@ -423,7 +423,7 @@ TEST_F(E2eNginxTest, ClientLibraryBalancesAndRetriesWithoutAProxy) {
   arguments.SetLoadBalancingPolicyName("round_robin");
   client::ScallopClient without_retries(
       grpc::CreateCustomChannel(targets, grpc::InsecureChannelCredentials(), arguments));
-  const KilledCall planted = KillReplicaUnderCall(without_retries, {3000, 3000, 3250, 3250});
+  const KilledCall planted = KillReplicaUnderCall(without_retries, {3000, 3000, 3160, 3160});
   ASSERT_GE(planted.victim, 0);
   EXPECT_EQ(planted.status.error_code(), grpc::StatusCode::UNAVAILABLE)
       << client::DescribeStatus(planted.status);
