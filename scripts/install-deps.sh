@@ -14,6 +14,9 @@ packages=(
   python3 python3-grpcio python3-protobuf python3-yaml
   openssl  # the tests make their TLS certificates with it
   nginx    # e2e_nginx_test runs deploy/nginx/ in front of three replicas
+  # The web viewer's test (tests/e2e/viewer_test.py): headless Chromium
+  # driven through chromedriver by Selenium.
+  chromium chromium-driver python3-selenium
   # scripts/test-portability.sh: a Clang build, and an aarch64 cross build of
   # the core and its golden tests (arm64 multiarch libraries) run under qemu.
   clang g++-aarch64-linux-gnu qemu-user

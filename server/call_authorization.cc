@@ -11,11 +11,19 @@ grpc::Status AuthorizeCall(const TokenTable* tokens, const grpc::ServerContextBa
   if (tokens == nullptr) return grpc::Status::OK;
   const auto& metadata = context.client_metadata();
   const auto header = metadata.find("authorization");
+  if (header == metadata.end()) return AuthorizeBearer(tokens, nullptr, world);
+  const std::string_view value(header->second.data(), header->second.size());
+  return AuthorizeBearer(tokens, &value, world);
+}
+
+grpc::Status AuthorizeBearer(const TokenTable* tokens, const std::string_view* authorization,
+                             const RequestedWorld& world) {
+  if (tokens == nullptr) return grpc::Status::OK;
   const grpc::Status unauthenticated(
       grpc::StatusCode::UNAUTHENTICATED,
       "authorization: a valid bearer token is required (\"authorization: Bearer TOKEN\")");
-  if (header == metadata.end()) return unauthenticated;
-  const std::string_view value(header->second.data(), header->second.size());
+  if (authorization == nullptr) return unauthenticated;
+  const std::string_view value = *authorization;
   // The scheme is case-insensitive (RFC 7235); one space before the token.
   constexpr std::string_view kScheme = "bearer ";
   if (value.size() <= kScheme.size()) return unauthenticated;

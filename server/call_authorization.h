@@ -6,6 +6,7 @@
 #include <grpcpp/server_context.h>
 
 #include <string>
+#include <string_view>
 
 #include "server/token_table.h"
 
@@ -37,5 +38,10 @@ RequestedWorld RequestedWorldOf(const Request& request, const std::string& defau
 // Cost: one SHA-256 and a compare a configured token.
 grpc::Status AuthorizeCall(const TokenTable* tokens, const grpc::ServerContextBase& context,
                            const RequestedWorld& world);
+
+// The same check on the value of an "authorization" header (null: none was
+// sent), for callers that are not gRPC calls (the HTTP tiles).
+grpc::Status AuthorizeBearer(const TokenTable* tokens, const std::string_view* authorization,
+                             const RequestedWorld& world);
 
 }  // namespace scallop::server

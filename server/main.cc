@@ -18,6 +18,7 @@
 #include <set>
 #include <thread>
 
+#include "server/http_api.h"
 #include "server/malloc_tuning.h"
 #include "server/metrics_http_server.h"
 #include "server/page_token.h"
@@ -56,6 +57,9 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
       ->default_str(config.listen);
   app.add_option("--metrics-listen", flags.metrics_listen,
                  "HOST:PORT serving Prometheus metrics at /metrics (port 0: any free port)");
+  app.add_option("--http-listen", flags.http_listen,
+                 "HOST:PORT serving HTTP tiles, /v1/worlds and the web viewer at / (port 0: any "
+                 "free port)");
   app.add_option("--threads", flags.threads, "Request threads, and as many generating")
       ->default_str(std::to_string(config.threads));
   app.add_option("--cache-megabytes", flags.cache_megabytes, "Region cache budget")
@@ -117,6 +121,7 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
   };
   apply("--listen", &ServerConfig::listen);
   apply("--metrics-listen", &ServerConfig::metrics_listen);
+  apply("--http-listen", &ServerConfig::http_listen);
   apply("--threads", &ServerConfig::threads);
   apply("--cache-megabytes", &ServerConfig::cache_megabytes);
   apply("--max-page-size", &ServerConfig::max_page_size);
@@ -161,6 +166,11 @@ int main(int argc, char** argv) {
     std::cerr << "scallopd: " << credentials.status().message() << '\n';
     return 2;
   }
+  // Before any listener is announced: the signal set's descriptors must not
+  // be the ones a client flood leaves the process without (EMFILE once made
+  // this constructor throw after the metrics port was printed).
+  boost::asio::io_context signals_context;
+  boost::asio::signal_set signals(signals_context, SIGINT, SIGTERM);
   scallop::server::TuneMallocForResponses();
   // Logs on stderr; stdout carries only the address line, for scripts and tests.
   spdlog::set_default_logger(spdlog::stderr_logger_mt("scallopd"));
@@ -207,6 +217,23 @@ int main(int argc, char** argv) {
     }
     metrics_server = std::move(*started);
   }
+  // The same: bound before, announced after the gRPC port.
+  scallop::server::HttpApi http_api(service.context());
+  std::unique_ptr<scallop::server::HttpListener> http_listener;
+  if (!config.http_listen.empty()) {
+    auto started = scallop::server::HttpListener::Start(
+        config.http_listen, "http",
+        [&http_api](const scallop::server::HttpListener::Request& request,
+                    const scallop::server::HttpListener::Respond& respond) {
+          http_api.Handle(request, respond);
+        },
+        config.max_http_connections, config.threads);
+    if (!started.ok()) {
+      std::cerr << "scallopd: " << started.status().message() << '\n';
+      return 2;
+    }
+    http_listener = std::move(*started);
+  }
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
@@ -232,6 +259,10 @@ int main(int argc, char** argv) {
     std::cout << "scallopd metrics on " << metrics_host << ':' << metrics_server->port()
               << std::endl;
   }
+  if (http_listener) {
+    const std::string http_host = config.http_listen.substr(0, config.http_listen.rfind(':'));
+    std::cout << "scallopd http on " << http_host << ':' << http_listener->port() << std::endl;
+  }
   if (tokens && config.tls_cert.empty()) {
     spdlog::warn(
         "bearer tokens over plaintext can be read on the way: set tls_cert and tls_key, or "
@@ -248,8 +279,6 @@ int main(int argc, char** argv) {
       config.tls_client_ca.empty() ? (config.tls_cert.empty() ? "plaintext" : "TLS") : "mutual TLS",
       tokens ? std::to_string(tokens->size()) + " tokens" : "no token needed");
 
-  boost::asio::io_context signals_context;
-  boost::asio::signal_set signals(signals_context, SIGINT, SIGTERM);
   signals.async_wait([&](const boost::system::error_code& error, int signal_number) {
     if (error) return;
     spdlog::info("signal {}: NOT_SERVING, draining {} s, then {} s of grace for in-flight calls",
@@ -264,7 +293,9 @@ int main(int argc, char** argv) {
   });
   signals_context.run();
   server->Wait();
+  // Tiles still on the pool finish before the listener that answers them stops.
   request_pool.join();
+  if (http_listener) http_listener->Stop();
   if (metrics_server) metrics_server->Stop();
   spdlog::info("stopped");
   return 0;

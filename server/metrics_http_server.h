@@ -1,8 +1,7 @@
 // The HTTP endpoint Prometheus scrapes: GET /metrics answers the text of a
-// render function; anything else is 404 (405 for other methods). Boost.Beast
-// on its own Asio thread, so scrapes never wait behind gRPC work. Connections
-// are capped and accepting resumes after errors (out of file descriptors), so
-// idle or abandoned connections cannot take the endpoint down for good.
+// render function; anything else is 404 (405 for other methods). A listener
+// of its own (http_listener.h: capped connections, accepting resumes after
+// errors), so scrapes never wait behind gRPC or tile work.
 #pragma once
 
 #include <functional>
@@ -10,6 +9,7 @@
 #include <string>
 
 #include "scallop/base/status.h"
+#include "server/http_listener.h"
 
 namespace scallop::server {
 
@@ -25,16 +25,15 @@ class MetricsHttpServer {
   static StatusOr<std::unique_ptr<MetricsHttpServer>> Start(const std::string& listen,
                                                             Render render,
                                                             int max_connections = 16);
-  ~MetricsHttpServer();
 
-  int port() const;
+  int port() const { return listener_->port(); }
   // Stops accepting and joins the thread; idempotent.
-  void Stop();
+  void Stop() { listener_->Stop(); }
 
  private:
-  struct State;
-  explicit MetricsHttpServer(std::unique_ptr<State> state);
-  std::unique_ptr<State> state_;
+  explicit MetricsHttpServer(std::unique_ptr<HttpListener> listener)
+      : listener_(std::move(listener)) {}
+  std::unique_ptr<HttpListener> listener_;
 };
 
 }  // namespace scallop::server

@@ -49,6 +49,9 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
                                     "max_metrics_connections",
                                     "reuse_port",
                                     "metrics_listen",
+                                    "http_listen",
+                                    "max_http_connections",
+                                    "http_max_age_seconds",
                                     "log_level",
                                     "tls_cert",
                                     "tls_key",
@@ -69,6 +72,9 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
     };
     read("listen", config.listen);
     read("metrics_listen", config.metrics_listen);
+    read("http_listen", config.http_listen);
+    read("max_http_connections", config.max_http_connections);
+    read("http_max_age_seconds", config.http_max_age_seconds);
     read("threads", config.threads);
     read("cache_megabytes", config.cache_megabytes);
     read("max_page_size", config.max_page_size);
@@ -168,6 +174,12 @@ Status ValidateConfig(const ServerConfig& config) {
   }
   if (config.max_metrics_connections < 1 || config.max_metrics_connections > 1024) {
     return InvalidArgument("max_metrics_connections: must be in 1..1024");
+  }
+  if (config.max_http_connections < 1 || config.max_http_connections > 65536) {
+    return InvalidArgument("max_http_connections: must be in 1..65536");
+  }
+  if (config.http_max_age_seconds < 0 || config.http_max_age_seconds > 31536000) {
+    return InvalidArgument("http_max_age_seconds: must be in 0..31536000 (a year)");
   }
   // The same 3 MB bound as pages: answers fit gRPC's default receive limit.
   if (config.max_nearest_batch < 1 || config.max_nearest_batch > (1 << 16)) {

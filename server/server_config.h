@@ -14,13 +14,15 @@ namespace scallop::server {
 struct ServerConfig {
   std::string listen = "127.0.0.1:50051";  // HOST:PORT; port 0 picks a free one
   std::string metrics_listen;              // HOST:PORT of GET /metrics (Prometheus); empty: off
-  int threads = 2;                         // request threads, and as many generating regions
-  int64_t cache_megabytes = 512;           // region cache budget (about 32 bytes a point)
-  int32_t max_page_size = 65536;           // points per GetPoints page (1.5 MB)
-  double max_query_area = 1e6;             // GetPoints, in d^2 (about 850k points)
-  double max_stream_area = 1e8;            // StreamPoints, in d^2
-  double max_verify_area = 1e6;            // Verify, in d^2 (about 3.5 s on two cores)
-  int max_in_flight = 64;                  // concurrent unary calls before RESOURCE_EXHAUSTED
+  // HOST:PORT of the HTTP tiles, world list and viewer (docs/tiles.md); empty: off.
+  std::string http_listen;
+  int threads = 2;                // request threads, and as many generating regions
+  int64_t cache_megabytes = 512;  // region cache budget (about 32 bytes a point)
+  int32_t max_page_size = 65536;  // points per GetPoints page (1.5 MB)
+  double max_query_area = 1e6;    // GetPoints, in d^2 (about 850k points)
+  double max_stream_area = 1e8;   // StreamPoints, in d^2
+  double max_verify_area = 1e6;   // Verify, in d^2 (about 3.5 s on two cores)
+  int max_in_flight = 64;         // concurrent unary calls before RESOURCE_EXHAUSTED
   // Streaming calls count apart, so idle streams cannot take every unary
   // slot and a burst of unary calls cannot starve the streams.
   int max_streams_in_flight = 32;
@@ -39,6 +41,11 @@ struct ServerConfig {
   double stream_stall_seconds = 10;  // a StreamPoints client not reading is dropped after this
   // Connections the metrics listener serves at once; more are closed at once.
   int max_metrics_connections = 16;
+  // Connections the HTTP listener (http_listen) serves at once; more are closed at once.
+  int max_http_connections = 256;
+  // Cache-Control max-age of tiles. Worlds never change, so a year; lower it
+  // only if a world's name may come to mean another world.
+  int64_t http_max_age_seconds = 31536000;
   // Share the listening port with other processes (SO_REUSEPORT). Off: a
   // second server on a port in use fails to start instead of splitting calls.
   bool reuse_port = false;

@@ -1,7 +1,8 @@
 // ServiceContext: what every call of the Scallop service shares (its
 // configuration, worlds, page tokens, engine, request pool, admission budgets
 // and metrics), in one small object that each RPC's file reaches directly, so
-// a streaming reactor needs no access to the service's private parts.
+// a streaming reactor needs no access to the service's private parts. The
+// HTTP tiles (http_api.h) share it too.
 #pragma once
 
 #include <grpcpp/server_context.h>

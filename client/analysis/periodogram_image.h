@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "client/image/png_image.h"
 #include "scallop/analysis/periodogram.h"
+#include "scallop/image/png_image.h"
 
 namespace scallop::cli {
 

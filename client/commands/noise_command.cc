@@ -9,11 +9,11 @@
 
 #include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
-#include "client/image/png_image.h"
 #include "client/options/rect_option.h"
 #include "client/options/remote_options.h"
 #include "client/options/world_options.h"
 #include "noise_messages.h"
+#include "scallop/image/png_image.h"
 #include "scallop/noise/noise_grid.h"
 #include "scallop/random/rng.h"
 

@@ -13,6 +13,12 @@ using tcp = boost::asio::ip::tcp;
 
 HttpAnswer Fetch(const std::string& host_port, http::verb verb, const std::string& target,
                  std::chrono::milliseconds timeout) {
+  return Fetch(host_port, verb, target, {}, timeout);
+}
+
+HttpAnswer Fetch(const std::string& host_port, http::verb verb, const std::string& target,
+                 const std::map<std::string, std::string>& headers,
+                 std::chrono::milliseconds timeout) {
   const size_t colon = host_port.rfind(':');
   boost::asio::io_context context;
   tcp::resolver resolver(context);
@@ -32,14 +38,23 @@ HttpAnswer Fetch(const std::string& host_port, http::verb verb, const std::strin
   step([&] { stream.async_connect(endpoints, done); });
   http::request<http::empty_body> request(verb, target, 11);
   request.set(http::field::host, host_port);
+  for (const auto& [name, value] : headers) request.set(name, value);
   step([&] { http::async_write(stream, request, done); });
   boost::beast::flat_buffer buffer;
   http::response_parser<http::string_body> parser;
   parser.skip(verb == http::verb::head);  // a HEAD answer has a length but no body
   step([&] { http::async_read(stream, buffer, parser, done); });
   const http::response<http::string_body>& response = parser.get();
-  return {static_cast<int>(response.result_int()), std::string(response[http::field::content_type]),
-          response.body()};
+  HttpAnswer answer{static_cast<int>(response.result_int()),
+                    std::string(response[http::field::content_type]),
+                    response.body(),
+                    {}};
+  for (const auto& field : response) {
+    std::string name(field.name_string());
+    for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    answer.headers[name] = std::string(field.value());
+  }
+  return answer;
 }
 
 std::map<std::string, double> ParseExposition(const std::string& text) {

@@ -1,0 +1,188 @@
+// Writing tiles as JSON, binary and PNG (formats in docs/tiles.md).
+#include "server/tile_encoding.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+
+#include "scallop/image/png_image.h"
+
+namespace scallop::server {
+namespace {
+
+void AppendNumber(std::string& out, double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+void AppendInteger(std::string& out, int64_t value) {
+  char buffer[24];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+void AppendUnsigned(std::string& out, uint64_t value) {
+  char buffer[24];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+// JSON string of a world name: quotes, backslashes and control characters
+// escaped; other bytes as they are (names come from the configuration).
+void AppendJsonString(std::string& out, const std::string& text) {
+  out += '"';
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\u%04x", static_cast<unsigned>(c));
+      out += escape;
+    } else {
+      out += c;
+    }
+  }
+  out += '"';
+}
+
+template <typename Unsigned>
+void AppendLittleEndian(std::string& out, Unsigned value) {
+  for (size_t byte = 0; byte < sizeof value; ++byte) {
+    out += static_cast<char>(static_cast<uint64_t>(value) >> (8 * byte) & 0xff);
+  }
+}
+
+void AppendDouble(std::string& out, double value) {
+  uint64_t bits = 0;
+  std::memcpy(&bits, &value, sizeof bits);
+  AppendLittleEndian(out, bits);
+}
+
+}  // namespace
+
+std::string EncodeTileJson(const Tile& tile) {
+  std::string out;
+  // About 20 bytes an id and 20 a coordinate.
+  out.reserve(256 + tile.ids.size() * 64);
+  out += "{\"world\":";
+  AppendJsonString(out, tile.world_name);
+  out += ",\"level\":";
+  AppendInteger(out, tile.key.level);
+  out += ",\"i\":";
+  AppendInteger(out, tile.key.i);
+  out += ",\"j\":";
+  AppendInteger(out, tile.key.j);
+  out += ",\"rect\":[";
+  AppendNumber(out, tile.rect.x0);
+  out += ',';
+  AppendNumber(out, tile.rect.y0);
+  out += ',';
+  AppendNumber(out, tile.rect.x1);
+  out += ',';
+  AppendNumber(out, tile.rect.y1);
+  out += "],\"fingerprint\":\"" + FingerprintHex(tile.world.fingerprint()) + "\"";
+  out += ",\"generator_version\":";
+  AppendInteger(out, tile.world.generator_version());
+  out += ",\"min_distance\":";
+  AppendNumber(out, tile.world.min_distance());
+  out += ",\"count\":";
+  AppendInteger(out, static_cast<int64_t>(tile.ids.size()));
+  out += ",\"ids\":[";
+  for (size_t k = 0; k < tile.ids.size(); ++k) {
+    if (k > 0) out += ',';
+    out += '"';
+    AppendUnsigned(out, tile.ids[k]);
+    out += '"';
+  }
+  for (const auto& [name, values] : {std::pair{"xs", &tile.xs}, {"ys", &tile.ys}}) {
+    out += "],\"";
+    out += name;
+    out += "\":[";
+    for (size_t k = 0; k < values->size(); ++k) {
+      if (k > 0) out += ',';
+      AppendNumber(out, (*values)[k]);
+    }
+  }
+  out += "]}";
+  return out;
+}
+
+std::string EncodeTileBinary(const Tile& tile) {
+  std::string out;
+  out.reserve(80 + tile.ids.size() * 24);
+  out += "SCTL";
+  AppendLittleEndian(out, uint16_t{1});  // binary layout version
+  AppendLittleEndian(out, uint16_t{0});  // flags: no rs, no layers yet
+  AppendLittleEndian(out, static_cast<uint32_t>(tile.ids.size()));
+  AppendLittleEndian(out, static_cast<uint32_t>(tile.key.level));
+  AppendLittleEndian(out, static_cast<uint64_t>(tile.key.i));
+  AppendLittleEndian(out, static_cast<uint64_t>(tile.key.j));
+  AppendLittleEndian(out, tile.world.fingerprint());
+  AppendLittleEndian(out, tile.world.generator_version());
+  AppendLittleEndian(out, uint32_t{0});  // reserved
+  AppendDouble(out, tile.rect.x0);
+  AppendDouble(out, tile.rect.y0);
+  AppendDouble(out, tile.rect.x1);
+  AppendDouble(out, tile.rect.y1);
+  for (const uint64_t id : tile.ids) AppendLittleEndian(out, id);
+  for (const double x : tile.xs) AppendDouble(out, x);
+  for (const double y : tile.ys) AppendDouble(out, y);
+  return out;
+}
+
+double TilePngMargin(const Tile& tile) {
+  const double pixel = tile.rect.Width() / kTilePngSide;
+  return std::max(0.25 * tile.world.min_distance(), 0.75 * pixel) + pixel;
+}
+
+StatusOr<std::string> RenderTilePng(const Tile& tile) {
+  constexpr uint8_t kGround = 255;
+  constexpr uint8_t kPoint = 40;
+  Image8 image{.width = kTilePngSide,
+               .height = kTilePngSide,
+               .channels = 1,
+               .pixels = std::vector<uint8_t>(kTilePngSide * kTilePngSide, kGround)};
+  const double pixel = tile.rect.Width() / kTilePngSide;  // tiles are square
+  const double radius = std::max(0.25 * tile.world.min_distance(), 0.75 * pixel);
+  // Pixel (column c, row r) has its centre at (x0 + (c + 0.5) pixel,
+  // y1 - (r + 0.5) pixel): row 0 is the top.
+  for (size_t k = 0; k < tile.xs.size(); ++k) {
+    const double u = (tile.xs[k] - tile.rect.x0) / pixel;  // in pixels from the left
+    const double v = (tile.rect.y1 - tile.ys[k]) / pixel;  // in pixels from the top
+    const double reach = radius / pixel;
+    const int c0 = std::max(0, static_cast<int>(std::floor(u - reach)));
+    const int c1 = std::min(kTilePngSide - 1, static_cast<int>(std::floor(u + reach)));
+    const int r0 = std::max(0, static_cast<int>(std::floor(v - reach)));
+    const int r1 = std::min(kTilePngSide - 1, static_cast<int>(std::floor(v + reach)));
+    for (int r = r0; r <= r1; ++r) {
+      for (int c = c0; c <= c1; ++c) {
+        const double du = c + 0.5 - u, dv = r + 0.5 - v;
+        if (du * du + dv * dv <= reach * reach) {
+          image.pixels[static_cast<size_t>(r) * kTilePngSide + c] = kPoint;
+        }
+      }
+    }
+  }
+  StatusOr<std::string> png = EncodePng(image);
+  if (!png.ok()) return Status(StatusCode::kInternal, "tile: " + png.status().message());
+  return png;
+}
+
+std::string FingerprintHex(uint64_t fingerprint) {
+  char buffer[17];
+  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(fingerprint));
+  return buffer;
+}
+
+std::string TileEtag(const World& world, const TileKey& key, TileFormat format) {
+  std::string etag = "\"";
+  return etag + FingerprintHex(world.fingerprint()) + ".g" +
+         std::to_string(world.generator_version()) + ".t" + std::to_string(kTileFormatVersion) +
+         ".L" + std::to_string(key.level) + "." + std::to_string(key.i) + "." +
+         std::to_string(key.j) + "." + std::string(TileFormatName(format)) + "\"";
+}
+
+}  // namespace scallop::server

@@ -1,0 +1,582 @@
+// Scallop's web viewer: pans and zooms a world's infinite plane, drawn from
+// the binary tiles of GET /v1/worlds/{world}/tiles/{i}/{j}.bin (the format is
+// in docs/tiles.md). Plain JavaScript, no build step; scallopd embeds it.
+//
+// The view is (world, centre x, y, zoom z in pixels per d), kept in the URL's
+// fragment so a link reopens the same place. The noise background (F1,
+// F2 - F1, cell id) is computed here from the tiles' points: every point
+// within 2 d of the screen is loaded, which is enough because F2 < 2 d on a
+// maximal Poisson-disk set (docs/noise.md).
+'use strict';
+
+(() => {
+  const REGION_SIDE_IN_D = 16;
+  // The level is the smallest whose tiles are at least this wide on screen.
+  const TILE_SCREEN_PIXELS = 256;
+  // Zooming out stops at this much plane on screen: about 35,000 A3 points.
+  const MAX_VIEW_AREA_IN_D2 = 40000;
+  const MAX_ZOOM = 400;  // pixels per d
+  const MAX_TILES_KEPT = 600;
+  const MAX_FETCHES = 6;
+  const NOISE_BLOCK = 4;  // the background is computed every NOISE_BLOCK CSS pixels
+  const PRECISION_LIMIT_IN_D = 2 ** 32;
+
+  const canvas = document.getElementById('plane');
+  const context = canvas.getContext('2d');
+  const controls = {
+    world: document.getElementById('world'),
+    draw: document.getElementById('draw'),
+    background: document.getElementById('background'),
+    seams: document.getElementById('seams'),
+    tokenField: document.getElementById('token-field'),
+    token: document.getElementById('token'),
+    status: document.getElementById('status'),
+    hover: document.getElementById('hover'),
+  };
+
+  const view = { world: '', x: 0, y: 0, z: 24, draw: 'dots', background: 'none', seams: false };
+  let worlds = new Map();  // name -> the world list's entry
+  let maxLevel = 0;
+  let token = sessionStorage.getItem('scallop-token') || '';
+
+  // ---- The URL ---------------------------------------------------------
+
+  function readFragment() {
+    const fields = new URLSearchParams(location.hash.slice(1));
+    const number = (name, fallback) => {
+      const value = Number(fields.get(name));
+      return fields.has(name) && Number.isFinite(value) ? value : fallback;
+    };
+    view.world = fields.get('world') || view.world;
+    view.x = number('x', view.x);
+    view.y = number('y', view.y);
+    view.z = number('z', view.z);
+    if (['dots', 'disks'].includes(fields.get('draw'))) view.draw = fields.get('draw');
+    if (['none', 'f1', 'f2-f1', 'cell'].includes(fields.get('bg'))) view.background = fields.get('bg');
+    if (fields.has('seams')) view.seams = fields.get('seams') === '1';
+  }
+
+  let fragmentTimer = 0;
+  function writeFragment() {
+    clearTimeout(fragmentTimer);
+    fragmentTimer = setTimeout(() => {
+      const fields = new URLSearchParams({
+        world: view.world, x: String(view.x), y: String(view.y), z: String(view.z),
+        draw: view.draw, bg: view.background, seams: view.seams ? '1' : '0',
+      });
+      history.replaceState(null, '', '#' + fields.toString());
+    }, 150);
+  }
+
+  // ---- Geometry --------------------------------------------------------
+
+  function minDistance() {
+    const world = worlds.get(view.world);
+    return world ? world.min_distance : 1;
+  }
+  function cssSize() {
+    return { width: canvas.clientWidth || window.innerWidth, height: canvas.clientHeight || window.innerHeight };
+  }
+  function minZoom() {
+    const { width, height } = cssSize();
+    return Math.sqrt((width * height) / MAX_VIEW_AREA_IN_D2);
+  }
+  function clampView() {
+    view.z = Math.min(MAX_ZOOM, Math.max(minZoom(), view.z));
+    const limit = PRECISION_LIMIT_IN_D * minDistance() * 0.999;
+    view.x = Math.min(limit, Math.max(-limit, view.x));
+    view.y = Math.min(limit, Math.max(-limit, view.y));
+  }
+  // Pixels per world unit.
+  function scale() { return view.z / minDistance(); }
+  // The half-open world rectangle on screen: [x0, x1) x [y0, y1), y up.
+  function viewRect() {
+    const { width, height } = cssSize();
+    const s = scale();
+    return [view.x - width / 2 / s, view.y - height / 2 / s, view.x + width / 2 / s, view.y + height / 2 / s];
+  }
+  function toScreen(x, y) {
+    const { width, height } = cssSize();
+    const s = scale();
+    return [(x - view.x) * s + width / 2, height / 2 - (y - view.y) * s];
+  }
+  function toWorld(px, py) {
+    const { width, height } = cssSize();
+    const s = scale();
+    return [view.x + (px - width / 2) / s, view.y - (py - height / 2) / s];
+  }
+  function level() {
+    const tileSideInPixels = REGION_SIDE_IN_D * view.z;  // a level-0 tile
+    const wanted = Math.ceil(Math.log2(TILE_SCREEN_PIXELS / tileSideInPixels));
+    return Math.min(maxLevel, Math.max(0, wanted));
+  }
+
+  // ---- Tiles -----------------------------------------------------------
+
+  const tiles = new Map();  // key -> {status, points, error, used}
+  const queue = [];
+  let fetching = 0;
+
+  function tileKey(world, L, i, j) { return `${world}/${L}/${i}/${j}`; }
+
+  // The tiles covering the view grown by `margin` (world units).
+  function tilesAround(margin) {
+    const L = level();
+    const side = REGION_SIDE_IN_D * minDistance() * 2 ** L;
+    const [x0, y0, x1, y1] = viewRect();
+    const half = 2 ** (28 - L);
+    const index = (v) => Math.min(half - 1, Math.max(-half, Math.floor(v / side)));
+    const wanted = [];
+    for (let j = index(y0 - margin); j <= index(y1 + margin); ++j) {
+      for (let i = index(x0 - margin); i <= index(x1 + margin); ++i) wanted.push({ L, i, j, side });
+    }
+    return wanted;
+  }
+
+  // docs/tiles.md, "Binary": an 80-byte little-endian header, then ids, xs, ys.
+  function parseTile(buffer) {
+    const data = new DataView(buffer);
+    const magic = String.fromCharCode(...new Uint8Array(buffer, 0, 4));
+    if (magic !== 'SCTL' || data.getUint16(4, true) !== 1) throw new Error('not a version 1 tile');
+    if (data.getUint16(6, true) & ~0x3) throw new Error('tile has arrays this viewer does not know');
+    const n = data.getUint32(8, true);
+    const points = {
+      n,
+      idLow: new Uint32Array(n), idHigh: new Uint32Array(n),
+      xs: new Float64Array(n), ys: new Float64Array(n),
+      rs: null,  // radius fields (coming): one radius a point
+      layers: null,  // layers (coming): one small integer a point
+    };
+    for (let k = 0; k < n; ++k) {
+      points.idLow[k] = data.getUint32(80 + 8 * k, true);
+      points.idHigh[k] = data.getUint32(84 + 8 * k, true);
+      points.xs[k] = data.getFloat64(80 + 8 * n + 8 * k, true);
+      points.ys[k] = data.getFloat64(80 + 16 * n + 8 * k, true);
+    }
+    let offset = 80 + 24 * n;
+    if (data.getUint16(6, true) & 1) {
+      points.rs = new Float64Array(n);
+      for (let k = 0; k < n; ++k) points.rs[k] = data.getFloat64(offset + 8 * k, true);
+      offset += 8 * n;
+    }
+    if (data.getUint16(6, true) & 2) {
+      points.layers = new Uint16Array(n);
+      for (let k = 0; k < n; ++k) points.layers[k] = data.getUint16(offset + 2 * k, true);
+    }
+    return points;
+  }
+
+  function idText(points, k) {
+    return ((BigInt(points.idHigh[k]) << 32n) | BigInt(points.idLow[k])).toString();
+  }
+
+  function headers() { return token ? { Authorization: 'Bearer ' + token } : {}; }
+
+  async function errorText(response) {
+    try {
+      const body = await response.json();
+      return `${response.status} ${body.error.status}: ${body.error.message}`;
+    } catch (e) {
+      return `${response.status} ${response.statusText}`;
+    }
+  }
+
+  function pump() {
+    while (fetching < MAX_FETCHES && queue.length > 0) {
+      const { key, url } = queue.shift();
+      const entry = tiles.get(key);
+      if (!entry || entry.status !== 'queued') continue;
+      entry.status = 'loading';
+      ++fetching;
+      fetch(url, { headers: headers() })
+        .then(async (response) => {
+          if (!response.ok) throw new Error(await errorText(response));
+          entry.points = parseTile(await response.arrayBuffer());
+          entry.status = 'ready';
+        })
+        .catch((error) => {
+          entry.status = 'error';
+          entry.error = String(error.message || error);
+          if (entry.error.startsWith('401')) askForToken();
+        })
+        .finally(() => {
+          --fetching;
+          pump();
+          requestRender();
+        });
+    }
+  }
+
+  // Queues the tiles the view needs (nearest the centre first) and returns
+  // the ones it wants, loaded or not.
+  function requestTiles(margin) {
+    const wanted = tilesAround(margin);
+    const now = performance.now();
+    const fresh = [];
+    for (const tile of wanted) {
+      const key = tileKey(view.world, tile.L, tile.i, tile.j);
+      tile.key = key;
+      let entry = tiles.get(key);
+      if (!entry) {
+        entry = { status: 'queued' };
+        tiles.set(key, entry);
+        const centre = [(tile.i + 0.5) * tile.side, (tile.j + 0.5) * tile.side];
+        fresh.push({
+          key,
+          distance: Math.hypot(centre[0] - view.x, centre[1] - view.y),
+          url: `/v1/worlds/${encodeURIComponent(view.world)}/tiles/${tile.i}/${tile.j}.bin?level=${tile.L}`,
+        });
+      }
+      entry.used = now;
+      tile.entry = entry;
+    }
+    fresh.sort((a, b) => a.distance - b.distance);
+    queue.push(...fresh);
+    // Tiles no longer wanted leave the queue; the least recently used go.
+    const wantedKeys = new Set(wanted.map((tile) => tile.key));
+    for (let k = queue.length - 1; k >= 0; --k) {
+      if (!wantedKeys.has(queue[k].key)) {
+        tiles.delete(queue[k].key);
+        queue.splice(k, 1);
+      }
+    }
+    if (tiles.size > MAX_TILES_KEPT) {
+      const old = [...tiles.entries()].filter(([key, entry]) => !wantedKeys.has(key) && entry.status !== 'loading');
+      old.sort((a, b) => a[1].used - b[1].used);
+      for (const [key] of old.slice(0, tiles.size - MAX_TILES_KEPT)) tiles.delete(key);
+    }
+    pump();
+    return wanted;
+  }
+
+  // ---- The points near the screen, gridded by d -------------------------
+
+  // A grid of cells of side d over the view grown by 3 d: cell c holds
+  // points cellPoints[cellStart[c] .. cellStart[c+1]). Built each frame.
+  function gridPoints(ready, margin) {
+    const d = minDistance();
+    const [x0, y0, x1, y1] = viewRect();
+    const gx0 = Math.floor((x0 - margin) / d), gy0 = Math.floor((y0 - margin) / d);
+    const columns = Math.floor((x1 + margin) / d) - gx0 + 1;
+    const rows = Math.floor((y1 + margin) / d) - gy0 + 1;
+    const xs = [], ys = [], owner = [], index = [];
+    for (const tile of ready) {
+      const p = tile.entry.points;
+      for (let k = 0; k < p.n; ++k) {
+        const x = p.xs[k], y = p.ys[k];
+        if (x < x0 - margin || x >= x1 + margin || y < y0 - margin || y >= y1 + margin) continue;
+        xs.push(x); ys.push(y); owner.push(p); index.push(k);
+      }
+    }
+    const cellOf = new Int32Array(xs.length);
+    const cellStart = new Int32Array(columns * rows + 1);
+    for (let k = 0; k < xs.length; ++k) {
+      const cx = Math.min(columns - 1, Math.max(0, Math.floor(xs[k] / d) - gx0));
+      const cy = Math.min(rows - 1, Math.max(0, Math.floor(ys[k] / d) - gy0));
+      cellOf[k] = cy * columns + cx;
+      ++cellStart[cellOf[k] + 1];
+    }
+    for (let c = 0; c < columns * rows; ++c) cellStart[c + 1] += cellStart[c];
+    const fill = cellStart.slice(0, columns * rows);
+    const cellPoints = new Int32Array(xs.length);
+    for (let k = 0; k < xs.length; ++k) cellPoints[fill[cellOf[k]]++] = k;
+    return { d, gx0, gy0, columns, rows, cellStart, cellPoints, xs, ys, owner, index };
+  }
+
+  // The nearest and second nearest points to (x, y) within 2 cells:
+  // {first, second, f1, f2} (indices into the grid, distances), squared
+  // distances compared as the server does (ties aside).
+  function nearestTwo(grid, x, y) {
+    const cx = Math.floor(x / grid.d) - grid.gx0, cy = Math.floor(y / grid.d) - grid.gy0;
+    let first = -1, second = -1, best = Infinity, next = Infinity;
+    for (let j = Math.max(0, cy - 2); j <= Math.min(grid.rows - 1, cy + 2); ++j) {
+      for (let i = Math.max(0, cx - 2); i <= Math.min(grid.columns - 1, cx + 2); ++i) {
+        const c = j * grid.columns + i;
+        for (let s = grid.cellStart[c]; s < grid.cellStart[c + 1]; ++s) {
+          const k = grid.cellPoints[s];
+          const dx = grid.xs[k] - x, dy = grid.ys[k] - y;
+          const squared = dx * dx + dy * dy;
+          if (squared < best) { second = first; next = best; first = k; best = squared; }
+          else if (squared < next) { second = k; next = squared; }
+        }
+      }
+    }
+    return { first, second, f1: Math.sqrt(best), f2: Math.sqrt(next) };
+  }
+
+  // A colour a cell keeps wherever it is seen: a hash of its point's id.
+  function cellColour(points, k) {
+    let h = (points.idLow[k] ^ Math.imul(points.idHigh[k], 0x9e3779b1)) >>> 0;
+    h = Math.imul(h ^ (h >>> 16), 0x85ebca6b) >>> 0;
+    h = Math.imul(h ^ (h >>> 13), 0xc2b2ae35) >>> 0;
+    h ^= h >>> 16;
+    return [128 + (h & 0x7f), 128 + ((h >>> 8) & 0x7f), 128 + ((h >>> 16) & 0x7f)];
+  }
+
+  const noiseCanvas = document.createElement('canvas');
+  function drawBackground(grid, width, height) {
+    const columns = Math.ceil(width / NOISE_BLOCK), rows = Math.ceil(height / NOISE_BLOCK);
+    noiseCanvas.width = columns;
+    noiseCanvas.height = rows;
+    const noiseContext = noiseCanvas.getContext('2d');
+    const image = noiseContext.createImageData(columns, rows);
+    const pixels = image.data;
+    for (let r = 0; r < rows; ++r) {
+      for (let c = 0; c < columns; ++c) {
+        const [x, y] = toWorld((c + 0.5) * NOISE_BLOCK, (r + 0.5) * NOISE_BLOCK);
+        const near = nearestTwo(grid, x, y);
+        const o = 4 * (r * columns + c);
+        let rgb = [255, 255, 255];
+        if (near.first >= 0) {
+          if (view.background === 'cell') {
+            rgb = cellColour(grid.owner[near.first], grid.index[near.first]);
+          } else {
+            const value = view.background === 'f1' ? near.f1 / grid.d : (near.f2 - near.f1) / grid.d;
+            const grey = Math.round(255 * Math.min(1, Math.max(0, value)));
+            rgb = [grey, grey, grey];
+          }
+        }
+        pixels[o] = rgb[0]; pixels[o + 1] = rgb[1]; pixels[o + 2] = rgb[2]; pixels[o + 3] = 255;
+      }
+    }
+    noiseContext.putImageData(image, 0, 0);
+    context.imageSmoothingEnabled = view.background !== 'cell';
+    context.drawImage(noiseCanvas, 0, 0, columns * NOISE_BLOCK, rows * NOISE_BLOCK);
+  }
+
+  function drawSeams(width, height) {
+    const side = REGION_SIDE_IN_D * minDistance();
+    if (side * scale() < 6) return;  // too dense to mean anything
+    const [x0, y0, x1, y1] = viewRect();
+    context.beginPath();
+    for (let i = Math.ceil(x0 / side); i * side < x1; ++i) {
+      const [px] = toScreen(i * side, 0);
+      context.moveTo(Math.round(px) + 0.5, 0);
+      context.lineTo(Math.round(px) + 0.5, height);
+    }
+    for (let j = Math.ceil(y0 / side); j * side < y1; ++j) {
+      const [, py] = toScreen(0, j * side);
+      context.moveTo(0, Math.round(py) + 0.5);
+      context.lineTo(width, Math.round(py) + 0.5);
+    }
+    context.strokeStyle = 'rgba(220, 40, 40, 0.7)';
+    context.lineWidth = 1;
+    context.stroke();
+  }
+
+  // ---- Drawing -----------------------------------------------------------
+
+  let drawn = { rect: [0, 0, 0, 0], points: [], idle: false };
+  let lastGrid = null;
+  let renderPending = false;
+
+  function requestRender() {
+    if (renderPending) return;
+    renderPending = true;
+    requestAnimationFrame(render);
+  }
+
+  function render() {
+    renderPending = false;
+    const ratio = window.devicePixelRatio || 1;
+    const { width, height } = cssSize();
+    if (canvas.width !== Math.round(width * ratio) || canvas.height !== Math.round(height * ratio)) {
+      canvas.width = Math.round(width * ratio);
+      canvas.height = Math.round(height * ratio);
+    }
+    context.setTransform(ratio, 0, 0, ratio, 0, 0);
+    context.fillStyle = '#fff';
+    context.fillRect(0, 0, width, height);
+    if (!worlds.has(view.world)) return;
+    clampView();
+
+    const d = minDistance();
+    const margin = 2 * d;  // F2 < 2 d: what the background needs around the screen
+    const wanted = requestTiles(margin);
+    const ready = wanted.filter((tile) => tile.entry.status === 'ready');
+    const grid = gridPoints(ready, margin);
+    lastGrid = grid;
+    if (view.background !== 'none') drawBackground(grid, width, height);
+    if (view.seams) drawSeams(width, height);
+
+    const rect = viewRect();
+    const s = scale();
+    const shown = [];
+    const dots = new Path2D();
+    const radius = view.draw === 'disks' ? (d / 2) * s : Math.max(1.2, Math.min(3, 0.12 * d * s));
+    for (let k = 0; k < grid.xs.length; ++k) {
+      const x = grid.xs[k], y = grid.ys[k];
+      const p = grid.owner[k], index = grid.index[k];
+      // A radius field's point is drawn at its own radius, when tiles carry one.
+      const r = view.draw === 'disks' && p.rs ? (p.rs[index] / 2) * s : radius;
+      const [px, py] = toScreen(x, y);
+      if (px < -r || px > width + r || py < -r || py > height + r) continue;
+      if (x >= rect[0] && x < rect[2] && y >= rect[1] && y < rect[3]) shown.push(k);
+      dots.moveTo(px + r, py);
+      dots.arc(px, py, r, 0, 2 * Math.PI);
+    }
+    if (view.draw === 'disks') {
+      context.fillStyle = 'rgba(40, 90, 170, 0.35)';
+      context.fill(dots);
+      context.strokeStyle = 'rgba(20, 50, 110, 0.9)';
+      context.lineWidth = 1;
+      context.stroke(dots);
+    } else {
+      context.fillStyle = '#1b1b1b';
+      context.fill(dots);
+    }
+
+    const pending = wanted.filter((tile) => tile.entry.status === 'queued' || tile.entry.status === 'loading');
+    const failed = wanted.find((tile) => tile.entry.status === 'error');
+    drawn = { rect, grid, shown, idle: pending.length === 0, level: level() };
+    controls.status.classList.toggle('error', Boolean(failed));
+    controls.status.textContent = failed
+      ? failed.entry.error
+      : `${shown.length.toLocaleString()} points · level ${level()} · ${pending.length ? pending.length + ' tiles loading' : 'x ' + view.x.toPrecision(8) + ', y ' + view.y.toPrecision(8)}`;
+    writeFragment();
+  }
+
+  // ---- Interaction -------------------------------------------------------
+
+  function panBy(dx, dy) {
+    const s = scale();
+    view.x -= dx / s;
+    view.y += dy / s;
+    requestRender();
+  }
+  function zoomAt(factor, px, py) {
+    const [wx, wy] = toWorld(px, py);
+    view.z *= factor;
+    clampView();
+    // Keep the world point under the cursor where it was.
+    const [nx, ny] = toWorld(px, py);
+    view.x += wx - nx;
+    view.y += wy - ny;
+    requestRender();
+  }
+
+  let drag = null;
+  canvas.addEventListener('pointerdown', (event) => {
+    drag = { x: event.clientX, y: event.clientY };
+    canvas.setPointerCapture(event.pointerId);
+    canvas.classList.add('dragging');
+    controls.hover.hidden = true;
+  });
+  canvas.addEventListener('pointermove', (event) => {
+    if (drag) {
+      panBy(event.clientX - drag.x, event.clientY - drag.y);
+      drag = { x: event.clientX, y: event.clientY };
+    } else {
+      showHover(event.clientX, event.clientY);
+    }
+  });
+  const endDrag = () => { drag = null; canvas.classList.remove('dragging'); };
+  canvas.addEventListener('pointerup', endDrag);
+  canvas.addEventListener('pointercancel', endDrag);
+  canvas.addEventListener('pointerleave', () => { controls.hover.hidden = true; });
+  canvas.addEventListener('wheel', (event) => {
+    event.preventDefault();
+    const pixels = event.deltaMode === 1 ? event.deltaY * 16 : event.deltaY;
+    zoomAt(Math.exp(-pixels * 0.002), event.clientX, event.clientY);
+  }, { passive: false });
+  window.addEventListener('keydown', (event) => {
+    if (event.target instanceof HTMLInputElement || event.target instanceof HTMLSelectElement) return;
+    const { width, height } = cssSize();
+    const step = 80;
+    const keys = {
+      ArrowLeft: () => panBy(step, 0), ArrowRight: () => panBy(-step, 0),
+      ArrowUp: () => panBy(0, step), ArrowDown: () => panBy(0, -step),
+      '+': () => zoomAt(1.25, width / 2, height / 2), '=': () => zoomAt(1.25, width / 2, height / 2),
+      '-': () => zoomAt(0.8, width / 2, height / 2),
+    };
+    if (keys[event.key]) { keys[event.key](); event.preventDefault(); }
+  });
+  document.getElementById('zoom-in').addEventListener('click', () => {
+    const { width, height } = cssSize();
+    zoomAt(1.5, width / 2, height / 2);
+  });
+  document.getElementById('zoom-out').addEventListener('click', () => {
+    const { width, height } = cssSize();
+    zoomAt(1 / 1.5, width / 2, height / 2);
+  });
+  window.addEventListener('resize', requestRender);
+  window.addEventListener('hashchange', () => { readFragment(); syncControls(); requestRender(); });
+
+  function showHover(px, py) {
+    if (!lastGrid || lastGrid.xs.length === 0) return;
+    const [x, y] = toWorld(px, py);
+    const near = nearestTwo(lastGrid, x, y);
+    const s = scale();
+    const reach = Math.max(8, view.draw === 'disks' ? (minDistance() / 2) * s : 8);
+    if (near.first < 0 || near.f1 * s > reach) {
+      controls.hover.hidden = true;
+      return;
+    }
+    const k = near.first;
+    const points = lastGrid.owner[k], index = lastGrid.index[k];
+    controls.hover.textContent = `id ${idText(points, index)}\nx  ${String(lastGrid.xs[k])}\ny  ${String(lastGrid.ys[k])}`;
+    controls.hover.style.left = `${px + 14}px`;
+    controls.hover.style.top = `${py + 14}px`;
+    controls.hover.hidden = false;
+  }
+
+  function syncControls() {
+    controls.world.value = view.world;
+    controls.draw.value = view.draw;
+    controls.background.value = view.background;
+    controls.seams.checked = view.seams;
+  }
+  controls.world.addEventListener('change', () => { view.world = controls.world.value; requestRender(); });
+  controls.draw.addEventListener('change', () => { view.draw = controls.draw.value; requestRender(); });
+  controls.background.addEventListener('change', () => { view.background = controls.background.value; requestRender(); });
+  controls.seams.addEventListener('change', () => { view.seams = controls.seams.checked; requestRender(); });
+
+  // ---- Worlds and the token -----------------------------------------------
+
+  function askForToken() {
+    controls.tokenField.hidden = false;
+    controls.token.focus();
+  }
+  controls.token.addEventListener('change', () => {
+    token = controls.token.value.trim();
+    sessionStorage.setItem('scallop-token', token);
+    tiles.clear();
+    queue.length = 0;
+    loadWorlds();
+  });
+
+  async function loadWorlds() {
+    const response = await fetch('/v1/worlds', { headers: headers() });
+    if (!response.ok) {
+      controls.status.classList.add('error');
+      controls.status.textContent = await errorText(response);
+      if (response.status === 401) askForToken();
+      return;
+    }
+    const list = await response.json();
+    worlds = new Map(list.worlds.map((world) => [world.name, world]));
+    maxLevel = Math.max(0, list.max_level);
+    controls.world.replaceChildren(...list.worlds.map((world) => new Option(
+      `${world.name} (seed ${world.seed}, d ${world.min_distance}, ${world.algorithm})`, world.name)));
+    if (!worlds.has(view.world)) view.world = worlds.has(list.default_world) ? list.default_world : list.worlds[0]?.name || '';
+    syncControls();
+    requestRender();
+  }
+
+  // ---- For tests and scripts: the view and the points drawn ----------------
+
+  window.scallopViewer = {
+    // {world, x, y, z, level, rect: [x0, y0, x1, y1], idle}: idle once every
+    // tile the view needs is drawn.
+    state: () => ({ world: view.world, x: view.x, y: view.y, z: view.z, level: drawn.level, rect: drawn.rect, idle: drawn.idle && !renderPending }),
+    // The points drawn whose centres lie in state().rect: [{id, x, y}].
+    drawnPoints: () => drawn.shown.map((k) => ({
+      id: idText(drawn.grid.owner[k], drawn.grid.index[k]), x: drawn.grid.xs[k], y: drawn.grid.ys[k],
+    })),
+    setView: (fields) => { Object.assign(view, fields); clampView(); syncControls(); requestRender(); },
+    panBy, zoomAt,
+  };
+
+  readFragment();
+  loadWorlds();
+})();
