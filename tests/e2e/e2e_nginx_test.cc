@@ -28,7 +28,8 @@ namespace scallop::testing {
 namespace {
 
 constexpr int kReplicas = 3;
-constexpr int kNginxGrpcPort = 8080;  // the `listen` of deploy/nginx/scallop.conf
+constexpr int kNginxGrpcPort = 8080;  // the `listen`s of deploy/nginx/scallop.conf
+constexpr int kNginxHttpPort = 8090;
 // Every replica gets this: tokens minted by one must page on the others.
 const std::vector<std::string> kReplicaArguments{"--world",
                                                  "coast:7:1:a3",
@@ -77,12 +78,15 @@ class E2eNginxTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     direct_ = ScallopdProcess::Start(kReplicaArguments).release();
-    std::vector<std::string> addresses;
+    std::vector<std::string> addresses, http_addresses;
     for (int r = 0; r < kReplicas; ++r) {
       if (!StartReplica(r, "127.0.0.1:0")) return;
       addresses.push_back(replicas_[r]->address());
+      http_addresses.push_back(http_[r]);
     }
-    nginx_ = NginxProcess::Start(SCALLOP_NGINX_CONFIG, {{"scallopd_grpc", addresses}}).release();
+    nginx_ = NginxProcess::Start(SCALLOP_NGINX_CONFIG,
+                                 {{"scallopd_grpc", addresses}, {"scallopd_http", http_addresses}})
+                 .release();
   }
   static void TearDownTestSuite() {
     delete nginx_;
@@ -95,13 +99,19 @@ class E2eNginxTest : public ::testing::Test {
     ASSERT_NE(nginx_, nullptr);
   }
 
-  // `listen` by value: it may be the address of the replica it replaces.
+  // `listen` by value: it may be the address of the replica it replaces. The
+  // HTTP port is the one replica r had, if it had one.
   static bool StartReplica(int r, const std::string listen) {
     delete replicas_[r];
-    replicas_[r] = ScallopdProcess::Start(kReplicaArguments, listen).release();
+    std::vector<std::string> arguments = kReplicaArguments;
+    arguments.insert(arguments.end(),
+                     {"--http-listen", http_[r].empty() ? "127.0.0.1:0" : http_[r]});
+    replicas_[r] = ScallopdProcess::Start(arguments, listen).release();
     if (replicas_[r] == nullptr) return false;
-    const std::string line = replicas_[r]->ReadStdoutLine(std::chrono::seconds(10));
-    metrics_[r] = line.substr(line.rfind(' ') + 1);
+    const std::string metrics = replicas_[r]->ReadStdoutLine(std::chrono::seconds(10));
+    metrics_[r] = metrics.substr(metrics.rfind(' ') + 1);
+    const std::string http = replicas_[r]->ReadStdoutLine(std::chrono::seconds(10));
+    http_[r] = http.substr(http.rfind(' ') + 1);
     return true;
   }
 
@@ -159,6 +169,7 @@ class E2eNginxTest : public ::testing::Test {
   static inline ScallopdProcess* direct_ = nullptr;
   static inline ScallopdProcess* replicas_[kReplicas] = {};
   static inline std::string metrics_[kReplicas];
+  static inline std::string http_[kReplicas];  // --http-listen, kept across restarts
   static inline NginxProcess* nginx_ = nullptr;
 };
 
@@ -542,6 +553,113 @@ TEST_F(E2eNginxTest, BrokenFollowResumesWithHeldRegions) {
   ASSERT_TRUE(direct.GetAllPoints(PointsRequest("coast", {16, 0, 80, 64}), expected).ok());
   EXPECT_EQ(have, std::set<uint64_t>(expected.ids.begin(), expected.ids.end()));
   ASSERT_TRUE(StartReplica(victim, replicas_[victim]->address()));
+}
+
+}  // namespace
+}  // namespace scallop::testing
+
+namespace scallop::testing {
+namespace {
+
+namespace http = boost::beast::http;
+
+// What a client can see of a tile: status, bytes and the caching headers.
+std::string Visible(const HttpAnswer& answer) {
+  auto header = [&](const char* name) {
+    const auto found = answer.headers.find(name);
+    return found == answer.headers.end() ? std::string("(none)") : found->second;
+  };
+  return std::to_string(answer.status) + " etag=" + header("etag") +
+         " cache-control=" + header("cache-control") + " content-type=" + answer.content_type +
+         " bytes=" + std::to_string(answer.body.size()) + ":" + answer.body;
+}
+
+std::string CacheStatus(const HttpAnswer& answer) {
+  const auto found = answer.headers.find("x-cache-status");
+  return found == answer.headers.end() ? "(none)" : found->second;
+}
+
+// The second request for a tile is a cache hit that no replica sees, with
+// the bytes and ETag a replica gives directly; If-None-Match gets 304 from
+// the cache. Errors are not stored (the planted fault: an error cached would
+// show HIT the second time).
+TEST_F(E2eNginxTest, SecondRequestForATileIsACacheHit) {
+  const std::string nginx = nginx_->Address(kNginxHttpPort);
+  for (const char* target :
+       {"/v1/worlds/coast/tiles/3/-2.bin?level=1", "/v1/worlds/hills/tiles/-7/5.json",
+        "/v1/worlds/coast/tiles/0/1.png"}) {
+    const HttpAnswer direct = Fetch(http_[0], http::verb::get, target);
+    ASSERT_EQ(direct.status, 200) << target << ": " << direct.body;
+    ASSERT_FALSE(direct.headers.at("etag").empty());
+    const HttpAnswer first = Fetch(nginx, http::verb::get, target);
+    EXPECT_EQ(CacheStatus(first), "MISS") << target;
+    double tiles_served = 0;
+    for (int r = 0; r < kReplicas; ++r) tiles_served += CallsServed(r, "HttpTile");
+    const HttpAnswer second = Fetch(nginx, http::verb::get, target);
+    EXPECT_EQ(CacheStatus(second), "HIT") << target;
+    EXPECT_EQ(Visible(first), Visible(direct)) << target;
+    EXPECT_EQ(Visible(second), Visible(direct)) << target;
+    double tiles_served_after = 0;
+    for (int r = 0; r < kReplicas; ++r) tiles_served_after += CallsServed(r, "HttpTile");
+    EXPECT_EQ(tiles_served_after, tiles_served) << target << ": a hit reached a replica";
+
+    const HttpAnswer revalidated =
+        Fetch(nginx, http::verb::get, target, {{"If-None-Match", direct.headers.at("etag")}});
+    EXPECT_EQ(revalidated.status, 304) << target;
+    EXPECT_EQ(revalidated.headers.at("etag"), direct.headers.at("etag"));
+    EXPECT_EQ(CacheStatus(revalidated), "HIT");
+  }
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const HttpAnswer unknown = Fetch(nginx, http::verb::get, "/v1/worlds/nowhere/tiles/0/0");
+    EXPECT_EQ(unknown.status, 404);
+    EXPECT_EQ(CacheStatus(unknown), "MISS") << "an error was stored";
+  }
+}
+
+// Every replica killed, then restarted: a client sees the same status, bytes
+// and caching headers for every tile, cached or not, and cached tiles are
+// served even while no replica runs.
+TEST_F(E2eNginxTest, RestartingEveryReplicaChangesNothingAClientSees) {
+  const std::string nginx = nginx_->Address(kNginxHttpPort);
+  const std::vector<std::string> cached = {"/v1/worlds/coast/tiles/11/12.bin?level=2",
+                                           "/v1/worlds/hills/tiles/-3/-4.json",
+                                           "/v1/worlds/coast/tiles/5/5.png?level=1"};
+  const std::vector<std::string> uncached = {"/v1/worlds/coast/tiles/-20/9.json?level=1",
+                                             "/v1/worlds/hills/tiles/40/-41.bin"};
+  std::map<std::string, std::string> before;
+  for (const std::string& target : cached) {
+    before[target] = Visible(Fetch(nginx, http::verb::get, target));
+    ASSERT_EQ(before[target].substr(0, 4), "200 ") << target;
+  }
+  for (const std::string& target : uncached) {
+    before[target] = Visible(Fetch(http_[1], http::verb::get, target));  // not through nginx
+    ASSERT_EQ(before[target].substr(0, 4), "200 ") << target;
+  }
+
+  for (int r = 0; r < kReplicas; ++r) KillReplica(r);
+  for (const std::string& target : cached) {
+    const HttpAnswer answer = Fetch(nginx, http::verb::get, target);
+    EXPECT_EQ(Visible(answer), before[target]) << target << " with every replica down";
+    EXPECT_EQ(CacheStatus(answer), "HIT") << target;
+  }
+  for (int r = 0; r < kReplicas; ++r) ASSERT_TRUE(StartReplica(r, replicas_[r]->address()));
+
+  for (const std::string& target : cached) {
+    EXPECT_EQ(Visible(Fetch(nginx, http::verb::get, target)), before[target]) << target;
+  }
+  for (const std::string& target : uncached) {
+    const HttpAnswer answer = Fetch(nginx, http::verb::get, target);
+    EXPECT_EQ(CacheStatus(answer), "MISS") << target;
+    EXPECT_EQ(Visible(answer), before[target]) << target << " from a restarted replica";
+  }
+  // And gRPC through the same nginx still answers as the direct server.
+  PlanePoints want, have;
+  ASSERT_TRUE(
+      direct_->Client().GetAllPoints(PointsRequest("coast", {1, 2, 30, 40}, 50), want).ok());
+  const grpc::Status status =
+      ThroughNginx().GetAllPoints(PointsRequest("coast", {1, 2, 30, 40}, 50), have);
+  ASSERT_TRUE(status.ok()) << client::DescribeStatus(status);
+  EXPECT_EQ(have.ids, want.ids);
 }
 
 }  // namespace
