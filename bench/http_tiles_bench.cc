@@ -12,10 +12,6 @@
 //   build/bench/http_tiles_bench [LEVEL [TILES_A_SIDE [ROUNDS [STREAMS [REPEATS]]]]]
 //   build/bench/http_tiles_bench 1 16 4 1 7   # the defaults
 #include <algorithm>
-#include <boost/asio/connect.hpp>
-#include <boost/asio/ip/tcp.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/http.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/http_connection.h"
 #include "scallop/plane/region_layout.h"
 #include "scallop_client.h"
 #include "tests/e2e/scallopd_process.h"
@@ -34,45 +31,9 @@
 namespace scallop {
 namespace {
 
-namespace http = boost::beast::http;
-using tcp = boost::asio::ip::tcp;
-
 struct TileAt {
   int64_t i = 0;
   int64_t j = 0;
-};
-
-// One keep-alive HTTP/1.1 connection: a request, its whole answer, repeat.
-class HttpConnection {
- public:
-  explicit HttpConnection(const std::string& host_port) : host_port_(host_port) {
-    const size_t colon = host_port.rfind(':');
-    tcp::resolver resolver(context_);
-    boost::asio::connect(socket_,
-                         resolver.resolve(host_port.substr(0, colon), host_port.substr(colon + 1)));
-    socket_.set_option(tcp::no_delay(true));
-  }
-
-  // The answer's status, its body in `body`, or throws on a transport error.
-  int Get(const std::string& target, std::string& body, const std::string& if_none_match = {}) {
-    http::request<http::empty_body> request(http::verb::get, target, 11);
-    request.set(http::field::host, host_port_);
-    if (!if_none_match.empty()) request.set(http::field::if_none_match, if_none_match);
-    http::write(socket_, request);
-    http::response<http::string_body> response;
-    http::read(socket_, buffer_, response);
-    body = std::move(response.body());
-    etag_ = std::string(response[http::field::etag]);
-    return static_cast<int>(response.result_int());
-  }
-  const std::string& last_etag() const { return etag_; }
-
- private:
-  std::string host_port_;
-  boost::asio::io_context context_;
-  tcp::socket socket_{context_};
-  boost::beast::flat_buffer buffer_;
-  std::string etag_;
 };
 
 struct Way {
@@ -134,11 +95,7 @@ int Main(int argc, char** argv) {
   auto server = testing::ScallopdProcess::Start(
       {"--http-listen", "127.0.0.1:0", "--log-level", "warn", "--threads", "2"});
   if (!server) return 1;
-  std::string http_address;
-  for (int line = 0; line < 3 && http_address.empty(); ++line) {
-    const std::string text = server->ReadStdoutLine(std::chrono::seconds(10));
-    if (text.starts_with("scallopd http on ")) http_address = text.substr(text.rfind(' ') + 1);
-  }
+  const std::string http_address = server->ReadAnnouncedAddress("scallopd http on ");
   if (http_address.empty()) return 1;
 
   // The square of tiles centred on the origin, row by row.

@@ -13,6 +13,7 @@ packages=(
   libyaml-cpp-dev libfftw3-dev libpng-dev libssl-dev
   python3 python3-grpcio python3-protobuf python3-yaml
   openssl  # the tests make their TLS certificates with it
+  nginx    # e2e_nginx_test runs deploy/nginx/ in front of three replicas
   # The web viewer's test (tests/e2e/viewer_test.py): headless Chromium
   # driven through chromedriver by Selenium.
   chromium chromium-driver python3-selenium

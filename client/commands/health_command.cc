@@ -49,7 +49,10 @@ CommandRunner RegisterHealth(CLI::App& app) {
   auto arguments = std::make_shared<HealthArguments>();
   CLI::App* command =
       app.add_subcommand("health", "Exit 0 if scallopd is SERVING, 1 if not or unreachable");
-  command->add_option("--server", arguments->server, "HOST:PORT of scallopd")->required();
+  command
+      ->add_option("--server", arguments->server,
+                   "scallopd address: HOST:PORT or a gRPC target (dns:///HOST:PORT, ...)")
+      ->required();
   command->add_option("--timeout", arguments->timeout_seconds, "Seconds to wait for an answer")
       ->check(CLI::Range(0.001, 3600.0))
       ->default_str("2");

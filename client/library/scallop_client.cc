@@ -3,6 +3,7 @@
 
 #include "google/rpc/status.pb.h"
 #include "grpc/health/v1/health.grpc.pb.h"
+#include "service_config.h"
 #include "status_code_name.h"
 #include "world_messages.h"
 
@@ -30,6 +31,7 @@ ScallopClient ScallopClient::Connect(const std::string& address, const Connectio
   grpc::ChannelArguments arguments;
   // Pages reach max_page_size * 24 bytes (1.5 MB by default); allow larger servers.
   arguments.SetMaxReceiveMessageSize(64 << 20);
+  arguments.SetServiceConfigJSON(std::string(kServiceConfigJson));
   std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
   if (options.tls) {
     credentials = grpc::SslCredentials({.pem_root_certs = options.tls_ca_pem,

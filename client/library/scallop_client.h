@@ -41,7 +41,11 @@ class ScallopClient {
   // `token`, when not empty, goes with every call as a bearer token.
   explicit ScallopClient(std::shared_ptr<grpc::Channel> channel, std::string token = {});
 
-  // A client of HOST:PORT over plaintext. Cheap: connects on the first call.
+  // A client of `address` over plaintext. Cheap: connects on the first call.
+  // `address` is HOST:PORT or any gRPC target: dns:///HOST:PORT (every
+  // address the name resolves to), ipv4:ADDR:PORT,ADDR:PORT,... The channel
+  // balances calls round_robin over the addresses and retries the idempotent
+  // unary calls on UNAVAILABLE (service_config.h).
   static ScallopClient Connect(const std::string& address);
   // The same with TLS, mutual TLS and a token as `options` asks. PEM texts
   // are checked only at the handshake: a bad one fails the first call

@@ -5,7 +5,9 @@ namespace scallop::cli {
 
 void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server_optional) {
   CLI::Option* server =
-      command.add_option("--server", arguments.server, "scallopd address HOST:PORT");
+      command.add_option("--server", arguments.server,
+                         "scallopd address: HOST:PORT or a gRPC target (dns:///HOST:PORT, "
+                         "ipv4:A:PORT,B:PORT), calls balanced round_robin");
   if (!server_optional) server->required();
   CLI::Option* world =
       command.add_option("--world", arguments.world_name, "A world configured on the server");

@@ -10,11 +10,17 @@ With --tls-ca (and --tls-cert/--tls-key for mutual TLS) it speaks TLS; a
 token from --token-file or the SCALLOP_TOKEN environment variable (kept out
 of shell history) goes with every call as "authorization: Bearer TOKEN".
 
+--server takes HOST:PORT or any gRPC target (dns:///HOST:PORT,
+ipv4:A:PORT,B:PORT): calls are balanced round_robin over its addresses and
+the idempotent calls (GetPoints here) retried on UNAVAILABLE, with the
+service config of the C++ client library (SERVICE_CONFIG).
+
   ./generate_stubs.sh /tmp/scallop-py
   PYTHONPATH=/tmp/scallop-py ./scallop_points.py --server 127.0.0.1:50051 \
       --seed 7 --rect=0,0,40,40   # "=": argparse reads "-5,..." as a flag
 """
 import argparse
+import json
 import os
 import sys
 
@@ -29,9 +35,29 @@ ALGORITHMS = {
 }
 
 
+# The C++ client library's service config (client/library/service_config.h;
+# tests/e2e/python_client_test.sh checks that the two agree): round_robin,
+# and retries of the pure reads on UNAVAILABLE (a replica that went away).
+# Streams are not retried: a retry would send again what was received.
+SERVICE_CONFIG = {
+    "loadBalancingConfig": [{"round_robin": {}}],
+    "methodConfig": [{
+        "name": [{"service": "scallop.v1.Scallop", "method": method} for method in (
+            "GetPoints", "Nearest", "NoiseGrid", "DescribeWorld", "GetServerInfo", "Verify")],
+        "retryPolicy": {
+            "maxAttempts": 4,
+            "initialBackoff": "0.1s",
+            "maxBackoff": "1s",
+            "backoffMultiplier": 2,
+            "retryableStatusCodes": ["UNAVAILABLE"],
+        },
+    }],
+}
+
+
 def parse_arguments(argv):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--server", default="127.0.0.1:50051", help="HOST:PORT of scallopd")
+    parser.add_argument("--server", default="127.0.0.1:50051", help="HOST:PORT or gRPC target (dns:///HOST:PORT, ipv4:A:P,B:P)")
     parser.add_argument("--world", help="name of a world configured on the server")
     parser.add_argument("--seed", type=int, help="seed of an inline world (0..2^64-1)")
     parser.add_argument("--min-distance", type=float, default=1.0)
@@ -69,15 +95,16 @@ def read_file(flag, path):
 
 def open_channel(arguments):
     """Plaintext, TLS or mutual TLS, as the --tls-* options ask."""
+    options = [("grpc.service_config", json.dumps(SERVICE_CONFIG))]
     if not (arguments.tls_ca or arguments.tls_cert):
-        return grpc.insecure_channel(arguments.server)
+        return grpc.insecure_channel(arguments.server, options=options)
     if bool(arguments.tls_cert) != bool(arguments.tls_key):
         raise ValueError("--tls-cert and --tls-key: give both or neither")
     credentials = grpc.ssl_channel_credentials(
         root_certificates=arguments.tls_ca and read_file("--tls-ca", arguments.tls_ca),
         private_key=arguments.tls_key and read_file("--tls-key", arguments.tls_key),
         certificate_chain=arguments.tls_cert and read_file("--tls-cert", arguments.tls_cert))
-    return grpc.secure_channel(arguments.server, credentials)
+    return grpc.secure_channel(arguments.server, credentials, options=options)
 
 
 def call_metadata(arguments):

@@ -34,6 +34,12 @@ expect_status 0 "stream"
 if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "stream CSV differs from plane"; fi
 run "$scallop" points --server "$server" --world coast --rect "$rect"
 if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "named world differs from its inline twin"; fi
+# gRPC targets: a name resolved by DNS, and a list of addresses balanced
+# round_robin (here twice the same server).
+run "$scallop" points --server "dns:///localhost:${server##*:}" --world coast --rect "$rect" --page-size 97
+if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "dns:/// target: $(head -2 "$work/err")"; fi
+run "$scallop" stream --server "ipv4:$server,$server" --world coast --rect "$rect"
+if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "ipv4: target: $(head -2 "$work/err")"; fi
 # At the default log level every call leaves a line.
 if grep -q 'GetPoints world="seed=7 .* code=OK' "$work/server.log"; then pass; else
   fail "no request line at log level info: $(tail -3 "$work/server.log")"; fi

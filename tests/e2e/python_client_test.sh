@@ -40,6 +40,23 @@ compare "streamed named world" "--world hills --stream --rect=-40,5,35,61" \
 compare "A2 with density" "--seed 3 --algorithm a2 --density 1.5 --rect=100,100,140,150" \
   "--seed 3 --algorithm a2 --density 1.5 --rect 100,100,140,150"
 
+# gRPC targets: a name resolved by DNS, two addresses balanced round_robin.
+port=${address##*:}
+address="dns:///localhost:$port" compare "dns:/// target" "--seed 7 --rect=-20,-20,30,30" \
+  "--seed 7 --rect -20,-20,30,30"
+address="ipv4:127.0.0.1:$port,127.0.0.1:$port" compare "ipv4: target" \
+  "--seed 7 --rect=-20,-20,30,30 --page-size 50" "--seed 7 --rect -20,-20,30,30"
+# The example's service config is the C++ library's.
+PYTHONPATH="$work/stubs:$source_dir/examples/python" "$python" - \
+  "$source_dir/client/library/service_config.h" <<'PYTHON'
+import json, re, sys
+import scallop_points
+header = open(sys.argv[1]).read()
+cpp = json.loads(re.search(r'R"json\((.*)\)json"', header, re.S).group(1))
+if cpp != scallop_points.SERVICE_CONFIG:
+    sys.exit(f"python client: SERVICE_CONFIG differs from service_config.h:\n{cpp}")
+PYTHON
+
 status=0
 client --rect=10,0,0,10 >/dev/null 2>"$work/err" || status=$?
 if [ "$status" != 1 ] || ! grep -q "INVALID_ARGUMENT: rect" "$work/err"; then
@@ -71,4 +88,4 @@ expect_failure "TLS without a client certificate" UNAVAILABLE --tls-ca "$work/ca
 expect_failure "no token" UNAUTHENTICATED "${tls_args[@]}"
 expect_failure "a wrong token" UNAUTHENTICATED "${tls_args[@]}" --token-file "$work/wrong-token"
 kill "$secure_pid"
-echo "python client: 4 comparisons with scallop plane and 4 error cases passed"
+echo "python client: 6 comparisons with scallop plane, the service config and 4 error cases passed"

@@ -99,6 +99,14 @@ std::string ScallopdProcess::ReadStdoutLine(std::chrono::milliseconds timeout) c
   return ReadLine(stdout_fd_, timeout);
 }
 
+std::string ScallopdProcess::ReadAnnouncedAddress(const std::string& prefix) const {
+  for (int line = 0; line < 3; ++line) {  // the metrics and HTTP lines, in either order
+    const std::string text = ReadStdoutLine(std::chrono::seconds(10));
+    if (text.starts_with(prefix)) return text.substr(text.rfind(' ') + 1);
+  }
+  return "";
+}
+
 void ScallopdProcess::Signal(int signal_number) const { kill(pid_, signal_number); }
 
 int ScallopdProcess::WaitForExit(std::chrono::milliseconds timeout) {

@@ -35,6 +35,9 @@ class ScallopdProcess {
   // The next line scallopd printed on stdout after the address line (e.g.
   // "scallopd metrics on HOST:PORT"), or empty after `timeout`.
   std::string ReadStdoutLine(std::chrono::milliseconds timeout) const;
+  // The HOST:PORT at the end of the first of the next few stdout lines that
+  // starts with `prefix` ("scallopd http on "), or empty if none does.
+  std::string ReadAnnouncedAddress(const std::string& prefix) const;
 
   void Signal(int signal_number) const;
   // The exit code once the process has exited, or -1 after `timeout`
