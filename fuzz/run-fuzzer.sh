@@ -14,7 +14,10 @@ fi
 target=$1 corpus=$2 seconds=$3 dictionary=${4:-}
 scratch=$(mktemp -d /tmp/scallop-fuzz-XXXXXX)
 trap 'rm -rf "$scratch"' EXIT
-options=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=8192
+# -timeout is wall time: 30 s, since an instrumented A1 region is slow and a
+# shared CI machine slower still (an input taking 0.35 s of CPU took 11 s
+# with the load average at 16).
+options=(-max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -max_len=8192
          -print_final_stats=1)
 [[ -z $dictionary ]] || options+=(-dict="$dictionary")
 # One process, no forking: the run must fit the CI machine's share of cores.

@@ -4,7 +4,7 @@
 # from its corpus in fuzz/corpus/, then merges what it found back into that
 # corpus (-merge=1 keeps only inputs that add coverage, so the corpora stay
 # small). A crash, leak, timeout or failed invariant stops the run, with the
-# input left in the current folder. Prints one line per target to copy into
+# input left in the current folder. Prints a line per target passed, for
 # docs/fuzzing.md: target, seconds run clean, executions, corpus size.
 #
 #   scripts/fuzz-long.sh [SECONDS] [TARGET...]      (default: every target)
@@ -26,11 +26,10 @@ if ((${#targets[@]} == 0)); then
   for source in fuzz/*_fuzzer.cc; do targets+=("$(basename "$source" .cc)"); done
 fi
 
-summary=()
 for target in "${targets[@]}"; do
   corpus=fuzz/corpus/$target
   found=$(mktemp -d /tmp/scallop-fuzz-long-XXXXXX)
-  options=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=8192
+  options=(-max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -max_len=8192
            -print_final_stats=1)
   [[ ! -f fuzz/dictionaries/$target.dict ]] || options+=(-dict="fuzz/dictionaries/$target.dict")
   echo "fuzz-long: $target for $seconds s"
@@ -42,6 +41,5 @@ for target in "${targets[@]}"; do
   executions=$(sed -n 's/^stat::number_of_executed_units: *//p' "$found.log")
   "$build/fuzz/$target" -merge=1 "$corpus" "$found" 2>/dev/null
   rm -rf "$found" "$found.log"
-  summary+=("$target $seconds s clean, $executions executions, corpus $(ls "$corpus" | wc -l) files")
+  echo "fuzz-long: $target $seconds s clean, $executions executions, corpus $(ls "$corpus" | wc -l) files"
 done
-printf 'fuzz-long: %s\n' "${summary[@]}"
