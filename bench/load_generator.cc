@@ -16,6 +16,7 @@
 
 #include "bench/load_report.h"
 #include "bench/load_tile_plan.h"
+#include "bench/loopback_target.h"
 #include "scallop_client.h"
 #include "world_messages.h"
 
@@ -41,14 +42,6 @@ struct LoadOptions {
 constexpr int64_t kMaxRequests = 10'000'000;
 constexpr double kMaxDurationSeconds = 600;
 constexpr int kMaxStreams = 256;
-
-// The network rule of this project: only loopback targets.
-bool IsLoopback(const std::string& target) {
-  for (const char* prefix : {"127.", "localhost:", "[::1]:"}) {
-    if (target.rfind(prefix, 0) == 0) return true;
-  }
-  return false;
-}
 
 // One connection per stream: a local subchannel pool stops gRPC from sharing
 // one TCP connection among the channels, as separate clients would not.
@@ -211,7 +204,7 @@ int main(int argc, char** argv) {
     std::cout << scallop::load::TsvHeader() << '\n';
     return 0;
   }
-  if (!scallop::load::IsLoopback(options.target)) {
+  if (!scallop::load::IsLoopbackTarget(options.target)) {
     std::cerr << "load_generator: --target must be a loopback address (127.x.x.x, localhost, "
                  "[::1]), got "
               << options.target << '\n';

@@ -20,6 +20,8 @@ packages=(
   # scripts/test-portability.sh: a Clang build, and an aarch64 cross build of
   # the core and its golden tests (arm64 multiarch libraries) run under qemu.
   clang g++-aarch64-linux-gnu qemu-user
+  # The libFuzzer targets (fuzz/, docs/fuzzing.md): Clang's libFuzzer runtime.
+  libfuzzer-14-dev
   libgtest-dev:arm64 libboost-dev:arm64 libcgal-dev:arm64 libgmp-dev:arm64
   libmpfr-dev:arm64 libfftw3-dev:arm64 libpng-dev:arm64
 )

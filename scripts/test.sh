@@ -2,7 +2,8 @@
 # Installs what is missing, builds everything with warnings as errors, and runs
 # every test twice: in a Release build and under AddressSanitizer +
 # UndefinedBehaviorSanitizer; the golden tests also with Clang, at -O0 and on
-# aarch64 (scripts/test-portability.sh). Run from anywhere, as root on a fresh Debian 12.
+# aarch64 (scripts/test-portability.sh); then each fuzz target for 15 s.
+# Run from anywhere, as root on a fresh Debian 12.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -22,3 +23,11 @@ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSCALLO
   -DSCALLOP_SANITIZE=ON -DSCALLOP_BUILD_BENCH=OFF
 cmake --build build-sanitize -j"$jobs"
 ctest --test-dir build-sanitize --output-on-failure -j"$jobs"
+
+# The libFuzzer targets, 15 s each from their corpora (docs/fuzzing.md).
+# Clang builds only them and what they link, with ASan and UBSan. The
+# ThreadSanitizer run is scripts/test-tsan.sh, outside CI for its time.
+cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSCALLOP_WERROR=ON \
+  -DCMAKE_CXX_COMPILER=clang++ -DSCALLOP_BUILD_FUZZERS=ON -DSCALLOP_BUILD_BENCH=OFF
+cmake --build build-fuzz -j"$jobs" --target fuzzers
+ctest --test-dir build-fuzz --output-on-failure -j"$jobs" -L fuzz
