@@ -59,7 +59,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
         !status.ok()) {
       return status;
     }
-    range_ = RegionsOverlapping(RegionLayout(world_.min_distance()), rect_);
+    range_ = RegionsOverlapping(RegionLayout(world_), rect_);
     next_ = range_.low;
     return grpc::Status::OK;
   }
