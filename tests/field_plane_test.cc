@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <set>
@@ -22,6 +23,7 @@
 #include "scallop/plane/viewport_tracker.h"
 #include "scallop/plane/world_verifier.h"
 #include "scallop/random/rng.h"
+#include "scallop/sampling/field_sampler.h"
 #include "scallop/verify/field_verifier.h"
 #include "tests/field_test_fields.h"
 #include "tests/test_worlds.h"
@@ -38,7 +40,7 @@ constexpr double kRatio = 4.0;
 
 // A field world: noise over the whole plane, or a 20 x 20 raster whose image covers
 // [-10 r_max, 10 r_max)^2 or more (the pixel size grows until the slope bound holds), 8 regions of
-// 4 r_max a side, with masked blobs for the masked case.
+// 6 r_max a side, with masked blobs for the masked case.
 World FieldWorld(FieldCase c, uint64_t seed, double ratio = kRatio) {
   const double extent = 10.0 * ratio * kRMin;
   const RadiusField field =
@@ -65,13 +67,13 @@ PlanePoints MustPoints(PlaneEngine& engine, const World& world, const Rect& rect
   return points.ok() ? *points : PlanePoints{};
 }
 
-// A window of about 1.5 regions a side centred on a random region corner within the raster,
+// A window of about a region a side centred near a random region corner within the raster,
 // so that it holds two seams and a corner of four regions.
 Rect WindowOnACorner(Rng& rng, const RegionLayout& layout) {
   const double s = layout.side();
-  const double cx = s * static_cast<double>(static_cast<int64_t>(rng.Below(4)) - 2);
-  const double cy = s * static_cast<double>(static_cast<int64_t>(rng.Below(4)) - 2);
-  const double half = 0.75 * s + rng.Uniform(0.0, 0.1 * s);
+  const double cx = s * static_cast<double>(static_cast<int64_t>(rng.Below(3)) - 1);
+  const double cy = s * static_cast<double>(static_cast<int64_t>(rng.Below(3)) - 1);
+  const double half = 0.5 * s + rng.Uniform(0.0, 0.1 * s);
   const double ox = rng.Uniform(-0.2, 0.2) * s;
   const double oy = rng.Uniform(-0.2, 0.2) * s;
   return {cx + ox - half, cy + oy - half, cx + ox + half, cy + oy + half};
@@ -96,7 +98,7 @@ TEST(FieldPlaneTest, NoConflictAndMaximalAcrossSeamsByBruteForce) {
       const World world = FieldWorld(c, seed, ratio);
       const RadiusField& field = *world.radius_field();
       const RegionLayout layout(world);
-      ASSERT_EQ(layout.side(), 4.0 * ratio * kRMin);
+      ASSERT_EQ(layout.side(), 6.0 * ratio * kRMin);
       PlaneEngine engine(EngineOptions(2, int64_t{64} << 20));
       Rng rng(HashWords({seed, static_cast<uint64_t>(c), static_cast<uint64_t>(ratio)}));
       for (int trial = 0; trial < 3; ++trial) {
@@ -113,7 +115,7 @@ TEST(FieldPlaneTest, NoConflictAndMaximalAcrossSeamsByBruteForce) {
         EXPECT_EQ(masked, 0);
         const field_test::ProbeResult probe =
             BruteForceProbe(halo.positions, field, window, 0.25 * kRMin, seed + trial);
-        EXPECT_GT(probe.probes, 2000);
+        EXPECT_GT(probe.probes, 500);
         EXPECT_LT(probe.worst_gap, 1e-7 * field.r_max())
             << "uncovered spot (" << probe.worst_spot.x << ", " << probe.worst_spot.y << ")";
         StatusOr<VerifyReport> report = VerifyWorldRect(engine, world, window, QueryLimit{});
@@ -286,12 +288,12 @@ TEST(FieldPlaneTest, SamePointsForAnyTilingOrderThreadsAndCache) {
 // region fields take the rest, and ids round-trip.
 TEST(FieldPlaneTest, PointIdLayoutFollowsTheRadiusRatio) {
   EXPECT_EQ(FieldPointIdIndexBits(16.0), 10);       // the constant world's region
-  EXPECT_EQ(FieldPointIdIndexBits(4.0 * 8), 11);    // 1,248 points at most
-  EXPECT_EQ(FieldPointIdIndexBits(4.0 * 100), 18);  // 185,553 points at most
+  EXPECT_EQ(FieldPointIdIndexBits(6.0 * 8), 12);    // 2,757 points at most
+  EXPECT_EQ(FieldPointIdIndexBits(6.0 * 100), 19);  // 416,893 points at most
   EXPECT_EQ(PointIdRegionBits(10), 27);
-  EXPECT_EQ(PointIdRegionBits(18), 23);
+  EXPECT_EQ(PointIdRegionBits(19), 22);
   Rng rng(4);
-  for (int bits : {10, 11, 14, 18}) {
+  for (int bits : {10, 11, 14, 19}) {
     const int64_t half = int64_t{1} << (PointIdRegionBits(bits) - 1);
     for (int trial = 0; trial < 200; ++trial) {
       const RegionKey key{static_cast<int64_t>(rng.Below(uint64_t{1} << 40)) - (int64_t{1} << 39),
@@ -308,18 +310,63 @@ TEST(FieldPlaneTest, PointIdLayoutFollowsTheRadiusRatio) {
   // Constant worlds keep their layout, bit for bit.
   EXPECT_EQ(EncodePointId({1, 2}, 3, 10), EncodePointId({1, 2}, 3));
   EXPECT_EQ(EncodePointId({1, 2}, 3), (uint64_t{1} << 37) | (uint64_t{2} << 10) | 3u);
-  // A world's layout: ratio 4 gives 16 r_min regions, 10 bits; ratio 100 gives 18.
+  // A world's layout: ratio 4 gives 24 r_min regions, 10 bits; ratio 100 gives 19.
   EXPECT_EQ(RegionLayout(FieldWorld(FieldCase::kNoise, 1)).point_id_index_bits(), 10);
   WorldSpec wide{.seed = 1};
   wide.radius_field = field_test::NoiseField(1, 0.5, 100.0).spec();
   const RegionLayout wide_layout(ValidWorld(wide));
-  EXPECT_EQ(wide_layout.point_id_index_bits(), 18);
-  EXPECT_EQ(wide_layout.side(), 200.0);
+  EXPECT_EQ(wide_layout.point_id_index_bits(), 19);
+  EXPECT_EQ(wide_layout.side(), 300.0);
   EXPECT_GE(static_cast<double>(wide_layout.regions_per_half_axis()) * wide_layout.side(),
             wide_layout.precision_limit());
 }
 
-// Follow's tracker on a field world whose regions hold thousands of points (ratio 16: 64 r_min
+// Seams in the density: the points' R^2 summed over bands of distance to the nearest seam, per
+// unit area (a density normalised by the local spacing), against a bounded SampleField run of
+// the same field on the same square. A wall that froze a straight growth front (a sampling
+// margin of 0.75 or 1.25 r_max) showed as a band 23% too dense and the next 30% too sparse;
+// the margin of 2.25 r_max keeps every band within 5% of the level (measured: 0.957 to
+// 1.025, the low ones around the wall).
+TEST(FieldPlaneTest, DensityIsFlatAcrossSeams) {
+  constexpr int kBands = 8;  // of a quarter of the half side, 0.75 r_max
+  double plane[kBands] = {}, bounded[kBands] = {};
+  PlaneEngine engine(EngineOptions(2, int64_t{256} << 20));
+  for (uint64_t s = 0; s < 4; ++s) {
+    const World world = FieldWorld(FieldCase::kNoise, 50 + s);
+    const RadiusField& field = *world.radius_field();
+    const double side = RegionLayout(world).side();
+    const Rect square{0, 0, 10 * side, 10 * side};
+    const PlanePoints points = MustPoints(engine, world, square);
+    StatusOr<std::vector<Vec2>> reference = SampleField({.domain = square, .seed = s}, field);
+    ASSERT_TRUE(reference.ok());
+    for (int which = 0; which < 2; ++which) {
+      for (const Vec2& p : which == 0 ? points.positions : *reference) {
+        const double fx = std::fmod(p.x, side), fy = std::fmod(p.y, side);
+        const double t = std::min({fx, side - fx, fy, side - fy}) / (side / 2);
+        const int band = std::min(kBands - 1, static_cast<int>(t * kBands));
+        const double r = field.Evaluate(p);
+        (which == 0 ? plane : bounded)[band] += r * r;
+      }
+    }
+  }
+  double plane_all = 0.0, bounded_all = 0.0;
+  for (int band = 0; band < kBands; ++band) {
+    plane_all += plane[band];
+    bounded_all += bounded[band];
+  }
+  // The plane as a whole packs a little looser than one bounded run (its sweeps fill more).
+  const double level = plane_all / bounded_all;
+  EXPECT_GT(level, 0.95);
+  EXPECT_LT(level, 1.02);
+  for (int band = 0; band < kBands; ++band) {
+    const double ratio = plane[band] / bounded[band] / level;
+    std::printf("band %d: plane / bounded %.4f of the level %.4f\n", band, ratio, level);
+    EXPECT_GT(ratio, 0.95) << "band " << band;
+    EXPECT_LT(ratio, 1.05) << "band " << band;
+  }
+}
+
+// Follow's tracker on a field world whose regions hold thousands of points (ratio 16: 96 r_min
 // regions, and a raster at r_min but for one pixel at r_max): a moving viewport gets each point
 // once, and every point in view has been sent.
 TEST(FieldPlaneTest, ViewportTrackerSendsEachPointOnce) {

@@ -15,17 +15,18 @@
 // by a multiple of 2^27 in i or j, i.e. they lie at least 2^31 d apart. DecodePointId inverts the
 // layout given any region within 2^26 regions (2^30 d) of the point, such as one the query touched.
 //
-// A radius-field world (regions of side S = 4 r_max) needs a wider index: b =
+// A radius-field world (regions of side S = 6 r_max) needs a wider index: b =
 // FieldPointIdIndexBits(S / r_min) bits (region_layout.h: the Folkman-Graham
-// packing bound of a square at spacing r_min; 10 bits up to r_max / r_min = 5,
-// 11 at 8, 13 at 16, 18 at 100), and each region field gets g = (64 - b) / 2 bits
-// (23 at ratio 100):
+// packing bound of a square at spacing r_min; 10 bits up to r_max / r_min = 4,
+// 12 at 8, 14 at 16, 19 at 100), and each region field gets g = (64 - b) / 2
+// bits (22 at ratio 100):
 //
 //   bits 63 .. b+g | b+g-1 .. b | b-1 .. 0
 //   i mod 2^g      | j mod 2^g  | k
 //
-// Ids then wrap at 2^g regions, 2^g S apart (at ratio 100: 2^23 * 400 r_min
-// = 2^31.6 r_min, within the precision range of 2^32 r_min each way), and
+// Ids then wrap at 2^g regions, 2^g S apart (at least 2^30.9 r_min, at ratio
+// 5; 2^22 * 600 r_min = 2^31.2 r_min at ratio 100: within the precision range
+// of 2^32 r_min each way, as 2^31 d is for a constant world), and
 // DecodePointId needs a region within 2^(g-1) regions of the point. The
 // layout a world uses is RegionLayout(world).point_id_index_bits().
 #pragma once

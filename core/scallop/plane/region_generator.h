@@ -22,13 +22,17 @@ namespace scallop {
 inline constexpr double kSamplingMarginInD = 6.5;
 
 // The same margin for a radius-field world, in units of r_max (regions are
-// kFieldRegionSideInRMax = 4 r_max wide): two points conflict only when less
-// than max(R(p), R(q)) <= r_max apart, and the spill of two regions that are
-// not neighbours stays S - 2 m = 1.5 r_max apart. docs/design.md, "Field
-// worlds on the plane", says why not more.
-inline constexpr double kFieldSamplingMarginInRMax = 1.25;
+// kFieldRegionSideInRMax = 6 r_max wide). A run processes only candidates
+// whose curve may reach its region, so its spill stays within about 2 r_max
+// of it where R is near r_max (2 R / (1 - L) at the very worst), and the wall
+// at 2.25 r_max is seldom met; with 1.25 or 0.75 r_max the wall froze a
+// straight front, 20% too dense before it and 30% too sparse after it. Two
+// points conflict only when less than max(R(p), R(q)) <= r_max apart, and the
+// spill of two regions that are not neighbours stays S - 2 m = 1.5 r_max
+// apart. docs/design.md, "Field worlds on the plane".
+inline constexpr double kFieldSamplingMarginInRMax = 2.25;
 
-// The margin a region of `world` is sampled with: 6.5 d, or 1.25 r_max.
+// The margin a region of `world` is sampled with: 6.5 d, or 2.25 r_max.
 double SamplingMargin(const World& world);
 
 // How far from the rectangles open to a run a lower-ranked neighbour's point
@@ -75,7 +79,7 @@ std::vector<RegionKey> LowerRankedNeighbours(RegionKey key);
 // grown by SampleFieldProblem (sampling/field_sampler.h).
 // Cost: O(points placed), about 220 for
 // A3 on average (a rank-0 region places more, a rank-3 region fewer); a
-// field world's region holds up to 0.86 (4 r_max / R)^2 points where the
+// field world's region holds up to 0.86 (6 r_max / R)^2 points where the
 // field is near R.
 RegionPoints GenerateRegion(const World& world, RegionKey key,
                             std::span<const RegionPoints* const> lower_neighbours);

@@ -1,5 +1,5 @@
 // How a world cuts the plane into regions: square regions of side S = 16 d
-// (a radius-field world: S = 4 r_max), region (i, j) owning
+// (a radius-field world: S = 6 r_max), region (i, j) owning
 // [i S, (i+1) S) x [j S, (j+1) S), each with a rank that fixes which
 // neighbours it depends on; and how many bits a point id gives the index in a
 // region (point_id.h). See docs/design.md, "Regions" and "Field worlds on the
@@ -26,12 +26,13 @@ inline constexpr auto kRegionsPerHalfAxis =
     static_cast<int64_t>(kPrecisionRangeInD / kRegionSideInD);
 
 // Region side of a radius-field world in units of r_max. A field world's
-// points conflict up to r_max apart, so regions must be a few r_max wide for
-// every interaction to stay within 8 neighbours (region_generator.h); where
-// the field is near r_min a region holds about 0.86 (4 r_max / r_min)^2
-// points, 1,100 at r_max / r_min = 8 and 140,000 at 100, which is why the
-// side is not 16 r_max (2.2 million). docs/design.md has the argument.
-inline constexpr double kFieldRegionSideInRMax = 4.0;
+// points conflict up to r_max apart and its runs spill up to about 2 r_max,
+// so regions must be a few r_max wide for every interaction to stay within 8
+// neighbours and the sampling margin clear of the spill (region_generator.h);
+// where the field is near r_min a region holds about 0.86 (6 r_max / r_min)^2
+// points, 2,000 at r_max / r_min = 8 and 310,000 at 100, which is why the
+// side is not 16 r_max (2.2 million at 100). docs/design.md has the argument.
+inline constexpr double kFieldRegionSideInRMax = 6.0;
 
 // Point-id index bits (point_id.h) of a constant world: 10.
 inline constexpr int kConstantPointIdIndexBits = 10;
@@ -73,7 +74,7 @@ class RegionLayout {
         regions_per_half_axis_(kRegionsPerHalfAxis) {}
 
   // The world's layout: the constant one above, or for a field world side
-  // 4 r_max, FieldPointIdIndexBits(4 r_max / r_min) index bits, and the
+  // 6 r_max, FieldPointIdIndexBits(6 r_max / r_min) index bits, and the
   // precision range 2^32 r_min (d is r_min).
   explicit RegionLayout(const World& world) : RegionLayout(world.min_distance()) {
     if (world.radius_field() == nullptr) return;

@@ -77,8 +77,12 @@ class FieldRun {
     const std::vector<FieldPoint>& all = grid_.points();
     if (unprocessed != nullptr) {
       unprocessed->assign(all.size() - static_cast<size_t>(fixed_count), false);
-      for (const int32_t index : queue_) {
-        if (index >= fixed_count) (*unprocessed)[static_cast<size_t>(index - fixed_count)] = true;
+      for (const std::vector<int32_t>* left : {&queue_, &beyond_stop_}) {
+        for (const int32_t index : *left) {
+          if (index >= fixed_count) {
+            (*unprocessed)[static_cast<size_t>(index - fixed_count)] = true;
+          }
+        }
       }
     }
     std::vector<Vec2> out;
@@ -124,8 +128,7 @@ class FieldRun {
   }
 
   // Whether a candidate's curve may reach the stop rectangle: its spots lie within
-  // Pad(R(p) / (1 - L)) of p. The same expression when queued and when taken, so the count
-  // of such candidates returns to exactly 0.
+  // Pad(R(p) / (1 - L)) of p.
   bool ReachesStop(const FieldPoint& p) const {
     if (!stop_) return false;
     const double limit = Pad(p.r * reach_factor_);
@@ -133,9 +136,9 @@ class FieldRun {
   }
 
   void Place(Vec2 x, double rx) {
-    queue_.push_back(static_cast<int32_t>(grid_.points().size()));
+    const auto index = static_cast<int32_t>(grid_.points().size());
+    (!stop_ || ReachesStop({x, rx}) ? queue_ : beyond_stop_).push_back(index);
     grid_.Add(x, rx);
-    pending_near_stop_ += ReachesStop({x, rx});
   }
 
   // True when every spot of p + t u, t in [t_lo, t_hi], lies inside some point's own disk
@@ -210,10 +213,10 @@ class FieldRun {
     }
   }
 
-  // Takes candidates uniformly until none is left, or with a stop rectangle until none whose
-  // curve can reach it is (the sweep then certifies the rectangle).
+  // Takes candidates uniformly until none is left; with a stop rectangle, only those whose
+  // curve can reach it (the sweep then certifies the rectangle).
   void Grow() {
-    while (!queue_.empty() && !(stop_ && pending_near_stop_ == 0)) {
+    while (!queue_.empty()) {
       const size_t k = rng_.Below(queue_.size());
       const int32_t index = queue_[k];
       queue_[k] = queue_.back();
@@ -221,7 +224,6 @@ class FieldRun {
       const double start = kTwoPi * rng_.Uniform();
       const double step = kTwoPi / tries_;
       const FieldPoint p = grid_.points()[static_cast<size_t>(index)];
-      pending_near_stop_ -= ReachesStop(p);
       GatherNear(p);
       for (int j = 0; j < tries_; ++j) {
         Vec2 x;
@@ -344,12 +346,14 @@ class FieldRun {
   FieldSampleStats* stats_;
   const SamplingProblem* problem_;
   std::optional<Rect> stop_;
-  // Queued candidates for which ReachesStop holds.
-  int64_t pending_near_stop_ = 0;
   double pad_absolute_ = 0.0;
   double reach_factor_ = 1.0;
   int max_depth_ = 0;
+  // Candidates not processed yet. With a stop rectangle, queue_ holds those whose curve may
+  // reach it and beyond_stop_ the others, which are never processed: they are the run's
+  // growth front, left for the next region to continue.
   std::vector<int32_t> queue_;
+  std::vector<int32_t> beyond_stop_;
   // The current candidate's neighbours (GatherNear) and how far its curve's spots reach.
   std::vector<FieldPoint> near_;
   double spot_limit_ = 0.0;
