@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "scallop/plane/plane_engine.h"
@@ -62,6 +63,29 @@ uint64_t RegionHash(PlaneEngine& engine, const World& world, RegionKey key) {
   return HashSequence(words);
 }
 
+// Each golden region of `world` hashes to its pinned value, with one thread and two, cold both
+// times (the hash must not depend on it); prints the values for a deliberate bump.
+void ExpectPinnedHashes(const World& world, std::string_view name, const uint64_t* pinned) {
+  SCOPED_TRACE(world.Describe());
+  for (int threads : {1, 2}) {
+    PlaneEngineOptions options;
+    options.threads = threads;
+    PlaneEngine engine(options);
+    for (size_t n = 0; n < std::size(kGoldenRegions); ++n) {
+      const RegionKey key = kGoldenRegions[n];
+      const uint64_t hash = RegionHash(engine, world, key);
+      EXPECT_EQ(hash, pinned[n]) << "region (" << key.i << ", " << key.j << ") with " << threads
+                                 << " threads: got 0x" << std::hex << hash
+                                 << "; if this change is intended, bump kGeneratorVersion";
+      if (threads == 1) {
+        std::printf("%s region (%lld, %lld): 0x%016llxULL\n", std::string(name).c_str(),
+                    static_cast<long long>(key.i), static_cast<long long>(key.j),
+                    static_cast<unsigned long long>(hash));
+      }
+    }
+  }
+}
+
 struct Golden {
   WorldAlgorithm algorithm;
   uint64_t hashes[std::size(kGoldenRegions)];
@@ -91,28 +115,8 @@ TEST(PlaneGoldenTest, RegionsOfAFixedWorldHaveTheirPinnedHashes) {
   // pin a private hash nobody can recompute.
   EXPECT_EQ(HashSequence({1, 2, 3}), HashWords({1, 2, 3}));
   for (const Golden& golden : kGolden) {
-    const World world = GoldenWorld(golden.algorithm);
-    SCOPED_TRACE(world.Describe());
-    // One thread and two, cold both times: the hash must not depend on it.
-    for (int threads : {1, 2}) {
-      PlaneEngineOptions options;
-      options.threads = threads;
-      PlaneEngine engine(options);
-      for (size_t n = 0; n < std::size(kGoldenRegions); ++n) {
-        const RegionKey key = kGoldenRegions[n];
-        const uint64_t hash = RegionHash(engine, world, key);
-        EXPECT_EQ(hash, golden.hashes[n])
-            << "region (" << key.i << ", " << key.j << ") of " << world.Describe() << " with "
-            << threads << " threads: got 0x" << std::hex << hash
-            << "; if this change is intended, bump kGeneratorVersion";
-        if (threads == 1) {
-          std::printf("%s region (%lld, %lld): 0x%016llxULL\n",
-                      std::string(WorldAlgorithmName(golden.algorithm)).c_str(),
-                      static_cast<long long>(key.i), static_cast<long long>(key.j),
-                      static_cast<unsigned long long>(hash));
-        }
-      }
-    }
+    ExpectPinnedHashes(GoldenWorld(golden.algorithm), WorldAlgorithmName(golden.algorithm),
+                       golden.hashes);
   }
 }
 
@@ -192,26 +196,8 @@ constexpr struct {
 
 TEST(PlaneGoldenTest, RegionsOfFieldWorldsHaveTheirPinnedHashes) {
   for (const auto& golden : kFieldGolden) {
-    const World world = FieldGoldenWorld(golden.kind);
-    SCOPED_TRACE(world.Describe());
-    for (int threads : {1, 2}) {
-      PlaneEngineOptions options;
-      options.threads = threads;
-      PlaneEngine engine(options);
-      for (size_t n = 0; n < std::size(kGoldenRegions); ++n) {
-        const RegionKey key = kGoldenRegions[n];
-        const uint64_t hash = RegionHash(engine, world, key);
-        EXPECT_EQ(hash, golden.hashes[n])
-            << "region (" << key.i << ", " << key.j << ") with " << threads << " threads: got 0x"
-            << std::hex << hash << "; if this change is intended, bump kGeneratorVersion";
-        if (threads == 1) {
-          std::printf("%s region (%lld, %lld): 0x%016llxULL\n",
-                      std::string(RadiusFieldKindName(golden.kind)).c_str(),
-                      static_cast<long long>(key.i), static_cast<long long>(key.j),
-                      static_cast<unsigned long long>(hash));
-        }
-      }
-    }
+    ExpectPinnedHashes(FieldGoldenWorld(golden.kind), RadiusFieldKindName(golden.kind),
+                       golden.hashes);
   }
   // The raster's mask reaches the golden regions, so the pinned bits cover masks.
   EXPECT_TRUE(FieldGoldenWorld(RadiusFieldKind::kRaster).radius_field()->AnyMasked({0, 0, 18, 18}));
