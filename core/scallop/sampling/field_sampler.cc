@@ -55,12 +55,13 @@ class FieldRun {
     return out;
   }
 
-  // A plane region's run (SampleFieldProblem): the inert points constrain, the fixed points
-  // constrain and are the first candidates, a seed from seed_area starts the growth when no
-  // fixed point is near enough to seed the domain; growth stops once no candidate's curve can
-  // reach the stop rectangle, and the sweep certifies that rectangle (or the domain).
+  // The stream after the run, for a caller that goes on drawing from it.
   const Rng& rng() const { return rng_; }
 
+  // A plane region's run (SampleFieldProblem): the inert points constrain, the fixed points
+  // constrain and are the first candidates, a seed from seed_area starts the growth when no
+  // fixed point is near enough to seed the domain; only candidates whose curve may reach the
+  // stop rectangle are processed, and the sweep certifies that rectangle (or the domain).
   std::vector<Vec2> RunProblem(std::vector<bool>* unprocessed) {
     const SamplingProblem& problem = *problem_;
     for (const Vec2& p : problem.inert_points) grid_.Add(p, Radius(p));
