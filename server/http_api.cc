@@ -153,7 +153,7 @@ HttpListener::Response HttpApi::AnswerWorldList(const HttpListener::Request& req
     ResolvedWorld resolved;
     if (!shared_.worlds.Resolve(by_name, resolved).ok()) continue;
     const World& world = resolved.world;
-    const RegionLayout layout(world.min_distance());
+    const RegionLayout layout(world);
     worlds.push_back({{"name", name},
                       {"seed", std::to_string(world.seed())},
                       {"min_distance", world.min_distance()},

@@ -38,7 +38,7 @@ bool NoneMatchHolds(std::string_view header, std::string_view etag) {
 // The tile's points from its regions: those in the rectangle, and for PNG
 // also those within the margin beyond it (drawn across the edge).
 Tile CollectTile(const std::vector<RegionHandle>& regions, const Rect& reach, Tile tile) {
-  const RegionLayout layout(tile.world.min_distance());
+  const RegionLayout layout(tile.world);
   VisitPoints(regions, layout, reach, 0, std::numeric_limits<size_t>::max(),
               [&](const Vec2& position, uint64_t id) {
                 tile.ids.push_back(id);
@@ -74,7 +74,7 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
   if (grpc::Status status = shared_.worlds.Resolve(by_name, resolved); !status.ok()) {
     return fail(status);
   }
-  const RegionLayout layout(resolved.world.min_distance());
+  const RegionLayout layout(resolved.world);
   Tile tile{.world_name = address.world,
             .world = resolved.world,
             .key = address.key,

@@ -22,7 +22,7 @@ bool ResolveWorld(const WorldRegistry& worlds, const Request& request, World& wo
 
 int64_t RegionsCost(const World& world, const Rect& rect) {
   if (!CheckRectBounds(world, rect, "rect").ok()) return 1;
-  const double count = RegionsOverlapping(RegionLayout(world.min_distance()), rect).Count();
+  const double count = RegionsOverlapping(RegionLayout(world), rect).Count();
   // Far beyond any budget already; the cast stays defined.
   return static_cast<int64_t>(std::min(count, 1e15));
 }
@@ -37,7 +37,7 @@ int64_t RequestCost(const WorldRegistry& worlds, const v1::VerifyRequest& reques
   World world;
   if (!ResolveWorld(worlds, request, world)) return 1;
   const Rect rect = RectFromMessage(request.rect());
-  const double halo = 2 * world.min_distance();
+  const double halo = 2 * world.max_spacing();  // VerifyWorldRect's halo
   return RegionsCost(world, {rect.x0 - halo, rect.y0 - halo, rect.x1 + halo, rect.y1 + halo});
 }
 

@@ -31,7 +31,7 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
         // A rectangle the rule refuses is left to VerifyWorldRect to report.
         const QueryLimit limit{.max_area = shared_.config.max_verify_area,
                                .name = "max_verify_area"};
-        const double d = world.min_distance(), halo = 2 * d;
+        const double halo = 2 * world.max_spacing();  // VerifyWorldRect's
         if (const Rect grown = Grown(rect, halo);
             CheckQueryRect(world, grown, limit, "rect+halo").ok()) {
           if (grpc::Status status =
@@ -59,7 +59,7 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
         response->set_spacing_violations_across_seams(report->spacing_violations_across_seams);
         response->set_spacing_ok(report->spacing_ok);
         response->set_maximal_ok(report->maximal_ok);
-        response->set_maximality_tolerance(MaximalityTolerance(d, max_abs));
+        response->set_maximality_tolerance(MaximalityTolerance(world.min_distance(), max_abs));
         response->set_passed(report->passed());
         log.add_points(report->points_checked);
         return grpc::Status::OK;
