@@ -12,11 +12,8 @@
 #include "status_code_name.h"
 
 namespace scallop::server {
-namespace {
 
 namespace http = boost::beast::http;
-
-}  // namespace
 
 int HttpStatusOf(grpc::StatusCode code) {
   switch (code) {
