@@ -80,7 +80,8 @@ grpc::Status AuthorizeHttp(const ServiceContext& shared, const HttpListener::Req
   return AuthorizeBearer(shared.tokens, authorization ? &*authorization : nullptr, world);
 }
 
-void HttpApi::Handle(const HttpListener::Request& request, const HttpListener::Respond& respond) {
+void HttpApi::Handle(const HttpListener::Request& request, const std::string& peer,
+                     const HttpListener::Respond& respond) {
   const std::string_view target = AsStdText(request.target());
   const std::string_view path = target.substr(0, target.find('?'));
   if (request.method() != http::verb::get && request.method() != http::verb::head) {
@@ -92,7 +93,7 @@ void HttpApi::Handle(const HttpListener::Request& request, const HttpListener::R
     return;
   }
   if (IsTileTarget(target)) {
-    AnswerTile(request, respond);
+    AnswerTile(request, peer, respond);
     return;
   }
   if (path == "/v1/worlds") {

@@ -6,7 +6,9 @@
 // and "HttpWorlds" the same way.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "server/http_listener.h"
 #include "server/service_context.h"
@@ -21,10 +23,13 @@ class HttpApi {
   // The listener's handler: routes by method and path, never blocks (cold
   // tiles go to the request pool) and answers every request, errors as
   // JSON {"error": {"code", "status", "message"}}.
-  void Handle(const HttpListener::Request& request, const HttpListener::Respond& respond);
+  // `peer` names the client for per-client limits (client_key.h).
+  void Handle(const HttpListener::Request& request, const std::string& peer,
+              const HttpListener::Respond& respond);
 
  private:
-  void AnswerTile(const HttpListener::Request& request, const HttpListener::Respond& respond);
+  void AnswerTile(const HttpListener::Request& request, const std::string& peer,
+                  const HttpListener::Respond& respond);
   HttpListener::Response AnswerWorldList(const HttpListener::Request& request);
 
   ServiceContext& shared_;
@@ -39,6 +44,9 @@ int HttpStatusOf(grpc::StatusCode code);
 // An error answer: the status's HTTP code and a JSON body naming the gRPC
 // code and the message; never cached (Cache-Control: no-store).
 HttpListener::Response HttpErrorResponse(const grpc::Status& status);
+
+// The request's "authorization" header, if it has one.
+std::optional<std::string_view> AuthorizationOf(const HttpListener::Request& request);
 
 // The request's "authorization" header checked like a gRPC call's metadata
 // (call_authorization.h).
