@@ -30,7 +30,8 @@ else
 fi
 
 targets=(samplers_bench field_bench plane_bench nearest_bench deterministic_math_bench
-  follow_bench cold_tile_latency load_generator null_server scallopd delaunay_verifier_test)
+  follow_bench cold_tile_latency load_generator null_server scallopd delaunay_verifier_test
+  http_tiles_bench)
 if [[ ${SKIP_BUILD:-0} != 1 ]]; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$build" -j2 --target "${targets[@]}"
@@ -60,6 +61,7 @@ if ((quick)); then
   FOLLOW_BENCH_WALK_D=64 bench follow_bench
   tiles=10
   load_env=(DURATION=1 REQUESTS=50 STREAMS=1 REPEATS=1)
+  http_tiles_args=(0 2 1 1 1)
 else
   bench samplers_bench
   bench field_bench --benchmark_filter=1M
@@ -69,6 +71,7 @@ else
   bench follow_bench
   tiles=400
   load_env=(DURATION=10 STREAMS="1 4" REPEATS=3)
+  http_tiles_args=(1 16 4 1 9)
 fi
 
 echo "== cold_tile_latency" >&2
@@ -78,6 +81,10 @@ commands[cold_tile_latency]="$build/bench/cold_tile_latency $tiles 64"
 echo "== verifier" >&2
 commands[verifier]="$build/tests/delaunay_verifier_test --gtest_filter=*MillionPoints*"
 "$build/tests/delaunay_verifier_test" --gtest_filter='*MillionPoints*' >"$results/verifier.txt"
+
+echo "== http_tiles_bench" >&2
+commands[http_tiles]="$build/bench/http_tiles_bench ${http_tiles_args[*]}"
+"$build/bench/http_tiles_bench" "${http_tiles_args[@]}" 2>/dev/null >"$results/http_tiles.txt"
 
 echo "== load" >&2
 commands[load]="${load_env[*]} bench/run-load-benchmark.sh $build"

@@ -15,18 +15,21 @@ std::string PeerKey(const std::string& peer) {
   return "peer:" + (has_port && colon > 5 ? peer.substr(0, colon) : peer);
 }
 
-std::string TokenKey(std::string_view authorization) {
-  return fmt::format("token:{:016x}", std::hash<std::string_view>{}(authorization));
+std::string ClientKey(const grpc::ServerContextBase& context, bool tokens_checked) {
+  const auto& metadata = context.client_metadata();
+  if (const auto header = metadata.find("authorization"); header != metadata.end()) {
+    const std::string_view value(header->second.data(), header->second.size());
+    return ClientKey(&value, context.peer(), tokens_checked);
+  }
+  return ClientKey(nullptr, context.peer(), tokens_checked);
 }
 
-std::string ClientKey(const grpc::ServerContextBase& context, bool tokens_checked) {
-  if (tokens_checked) {
-    const auto& metadata = context.client_metadata();
-    if (const auto header = metadata.find("authorization"); header != metadata.end()) {
-      return TokenKey(std::string_view(header->second.data(), header->second.size()));
-    }
+std::string ClientKey(const std::string_view* authorization, const std::string& peer,
+                      bool tokens_checked) {
+  if (tokens_checked && authorization != nullptr) {
+    return fmt::format("token:{:016x}", std::hash<std::string_view>{}(*authorization));
   }
-  return PeerKey(context.peer());
+  return PeerKey(peer);
 }
 
 }  // namespace scallop::server

@@ -19,7 +19,9 @@ std::string ClientKey(const grpc::ServerContextBase& context, bool tokens_checke
 // The same from a peer string as gRPC gives it ("ipv4:10.0.0.7:51234").
 std::string PeerKey(const std::string& peer);
 
-// "token:<hash>" for the value of an authorization header.
-std::string TokenKey(std::string_view authorization);
+// The same from the value of an "authorization" header (null: none) and a
+// peer string, for callers that are not gRPC calls (the HTTP tiles).
+std::string ClientKey(const std::string_view* authorization, const std::string& peer,
+                      bool tokens_checked);
 
 }  // namespace scallop::server

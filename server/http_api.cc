@@ -12,11 +12,8 @@
 #include "status_code_name.h"
 
 namespace scallop::server {
-namespace {
 
 namespace http = boost::beast::http;
-
-}  // namespace
 
 int HttpStatusOf(grpc::StatusCode code) {
   switch (code) {
@@ -83,12 +80,8 @@ grpc::Status AuthorizeHttp(const ServiceContext& shared, const HttpListener::Req
   return AuthorizeBearer(shared.tokens, authorization ? &*authorization : nullptr, world);
 }
 
-std::string HttpClientKey(const ServiceContext& shared, const HttpListener::Request& request) {
-  const std::optional<std::string_view> authorization = AuthorizationOf(request);
-  return shared.tokens && authorization ? TokenKey(*authorization) : "http:anonymous";
-}
-
-void HttpApi::Handle(const HttpListener::Request& request, const HttpListener::Respond& respond) {
+void HttpApi::Handle(const HttpListener::Request& request, const std::string& peer,
+                     const HttpListener::Respond& respond) {
   const std::string_view target = AsStdText(request.target());
   const std::string_view path = target.substr(0, target.find('?'));
   if (request.method() != http::verb::get && request.method() != http::verb::head) {
@@ -100,7 +93,7 @@ void HttpApi::Handle(const HttpListener::Request& request, const HttpListener::R
     return;
   }
   if (IsTileTarget(target)) {
-    AnswerTile(request, respond);
+    AnswerTile(request, peer, respond);
     return;
   }
   if (path == "/v1/worlds") {

@@ -6,7 +6,9 @@
 // and "HttpWorlds" the same way.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "server/http_listener.h"
 #include "server/service_context.h"
@@ -21,10 +23,13 @@ class HttpApi {
   // The listener's handler: routes by method and path, never blocks (cold
   // tiles go to the request pool) and answers every request, errors as
   // JSON {"error": {"code", "status", "message"}}.
-  void Handle(const HttpListener::Request& request, const HttpListener::Respond& respond);
+  // `peer` names the client for per-client limits (client_key.h).
+  void Handle(const HttpListener::Request& request, const std::string& peer,
+              const HttpListener::Respond& respond);
 
  private:
-  void AnswerTile(const HttpListener::Request& request, const HttpListener::Respond& respond);
+  void AnswerTile(const HttpListener::Request& request, const std::string& peer,
+                  const HttpListener::Respond& respond);
   HttpListener::Response AnswerWorldList(const HttpListener::Request& request);
 
   ServiceContext& shared_;
@@ -40,14 +45,11 @@ int HttpStatusOf(grpc::StatusCode code);
 // code and the message; never cached (Cache-Control: no-store).
 HttpListener::Response HttpErrorResponse(const grpc::Status& status);
 
+// The request's "authorization" header, if it has one.
+std::optional<std::string_view> AuthorizationOf(const HttpListener::Request& request);
+
 // The request's "authorization" header checked like a gRPC call's metadata
 // (call_authorization.h).
-// The client an HTTP request counts as in the admission budget: its token's
-// key when tokens are checked, else "http:anonymous" (the listener does not
-// pass peer addresses yet), so anonymous tiles together hold at most
-// max_client_share of the unary budget.
-std::string HttpClientKey(const ServiceContext& shared, const HttpListener::Request& request);
-
 grpc::Status AuthorizeHttp(const ServiceContext& shared, const HttpListener::Request& request,
                            const RequestedWorld& world);
 

@@ -54,6 +54,13 @@ class Session : public std::enable_shared_from_this<Session> {
         gate_(std::move(gate)),
         open_(open) {
     ++open_;
+    boost::beast::error_code error;
+    const tcp::endpoint remote = stream_.socket().remote_endpoint(error);
+    if (!error) {
+      const std::string address = remote.address().to_string();
+      peer_ = remote.address().is_v6() ? "ipv6:[" + address + "]:" + std::to_string(remote.port())
+                                       : "ipv4:" + address + ":" + std::to_string(remote.port());
+    }
   }
   ~Session() { --open_; }
   Session(const Session&) = delete;
@@ -81,13 +88,15 @@ class Session : public std::enable_shared_from_this<Session> {
     });
     std::weak_ptr<Session> weak = weak_from_this();
     auto executor = stream_.get_executor();
-    handler_(request_, [weak, executor, gate = gate_, serial](HttpListener::Response response) {
-      const std::lock_guard lock(gate->mutex);
-      if (!gate->open) return;
-      asio::post(executor, [weak, serial, response = std::move(response)]() mutable {
-        if (std::shared_ptr<Session> self = weak.lock()) self->Write(serial, std::move(response));
-      });
-    });
+    handler_(request_, peer_,
+             [weak, executor, gate = gate_, serial](HttpListener::Response response) {
+               const std::lock_guard lock(gate->mutex);
+               if (!gate->open) return;
+               asio::post(executor, [weak, serial, response = std::move(response)]() mutable {
+                 if (std::shared_ptr<Session> self = weak.lock())
+                   self->Write(serial, std::move(response));
+               });
+             });
   }
 
   void Write(uint64_t serial, HttpListener::Response response) {
@@ -117,6 +126,7 @@ class Session : public std::enable_shared_from_this<Session> {
   const HttpListener::Handler& handler_;
   std::shared_ptr<Gate> gate_;
   std::atomic<int>& open_;
+  std::string peer_ = "unknown";
   uint64_t serial_ = 0;    // of the request being answered
   uint64_t answered_ = 0;  // the last serial written
   boost::beast::flat_buffer buffer_;

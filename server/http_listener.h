@@ -27,9 +27,12 @@ class HttpListener {
   // Runs on one of the listener's threads (for many connections at once), so
   // it must not block: slow work goes to a
   // pool, which calls `respond` when done. `request` lives only for the call:
-  // copy what the work needs. The connection reads its next
-  // request only after the answer is written.
-  using Handler = std::function<void(const Request& request, Respond respond)>;
+  // copy what the work needs. The connection reads its next request only
+  // after the answer is written. `peer` is the client's address as gRPC
+  // writes a peer ("ipv4:127.0.0.1:51234", "ipv6:[::1]:51234"), for
+  // per-client limits (client_key.h).
+  using Handler =
+      std::function<void(const Request& request, const std::string& peer, Respond respond)>;
 
   // Listens on HOST:PORT (port 0: any free port) and serves until Stop or
   // destruction, at most `max_connections` connections at once: one beyond

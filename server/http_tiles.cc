@@ -5,6 +5,7 @@
 #include <boost/beast/http.hpp>
 
 #include "scallop/plane/query_rect.h"
+#include "server/client_key.h"
 #include "server/http_api.h"
 #include "server/region_warmup.h"
 #include "server/request_cost.h"
@@ -50,7 +51,7 @@ Tile CollectTile(const std::vector<RegionHandle>& regions, const Rect& reach, Ti
 
 }  // namespace
 
-void HttpApi::AnswerTile(const HttpListener::Request& request,
+void HttpApi::AnswerTile(const HttpListener::Request& request, const std::string& peer,
                          const HttpListener::Respond& respond) {
   auto log = std::make_shared<RequestLog>("HttpTile", shared_.metrics);
   auto fail = [&](const grpc::Status& status) {
@@ -117,16 +118,28 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
     reach = {std::max(-limit, reach.x0 - margin), std::max(-limit, reach.y0 - margin),
              std::min(limit, reach.x1 + margin), std::min(limit, reach.y1 + margin)};
   }
-  const std::string client = HttpClientKey(shared_, request);
+  // Admitted as a GetPoints of the same regions is: the same budget, cost,
+  // client share and rate limit.
+  const std::optional<std::string_view> authorization = AuthorizationOf(request);
+  const std::string client =
+      ClientKey(authorization ? &*authorization : nullptr, peer, shared_.tokens != nullptr);
   const int64_t cost = RegionsCost(tile.world, reach);
-  if (grpc::Status admitted = shared_.unary_in_flight.TryAdmit(client, cost); !admitted.ok()) {
-    return fail(admitted);
+  double retry_after = 0;
+  if (grpc::Status admitted = shared_.Admit(client, shared_.unary_in_flight, cost, &retry_after);
+      !admitted.ok()) {
+    log->Finish(admitted);
+    HttpListener::Response refusal = HttpErrorResponse(admitted);
+    if (retry_after > 0) {
+      refusal.set(http::field::retry_after,
+                  std::to_string(static_cast<int64_t>(std::ceil(retry_after))));
+    }
+    respond(std::move(refusal));
+    return;
   }
-  auto release = [this, client, cost] { shared_.unary_in_flight.Release(client, cost); };
   response.result(http::status::ok);
   response.set(http::field::content_type, AsBeastText(TileContentType(address.format)));
   // Encodes and answers; on whichever thread has the regions.
-  auto finish = [log, reach, release, format = address.format](
+  auto finish = [this, log, reach, client, cost, format = address.format](
                     const std::vector<RegionHandle>& regions, Tile tile,
                     HttpListener::Response response, const HttpListener::Respond& respond) {
     tile = CollectTile(regions, reach, std::move(tile));
@@ -134,7 +147,7 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
     if (format == TileFormat::kPng) {
       StatusOr<std::string> png = RenderTilePng(tile);
       if (!png.ok()) {
-        release();
+        shared_.unary_in_flight.Release(client, cost);
         log->Finish(ToGrpcStatus(png.status()));
         respond(HttpErrorResponse(ToGrpcStatus(png.status())));
         return;
@@ -143,7 +156,7 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
     } else {
       response.body() = format == TileFormat::kJson ? EncodeTileJson(tile) : EncodeTileBinary(tile);
     }
-    release();
+    shared_.unary_in_flight.Release(client, cost);
     log->Finish(grpc::Status::OK);
     respond(std::move(response));
   };
@@ -153,7 +166,7 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
     return;
   }
   boost::asio::post(
-      shared_.request_pool, [this, log, reach, release, tile = std::move(tile),
+      shared_.request_pool, [this, log, reach, client, cost, tile = std::move(tile),
                              response = std::move(response), respond, finish]() mutable {
         const auto deadline = std::chrono::steady_clock::now() + kColdTileTimeout;
         grpc::Status status = WarmRegions(shared_.engine, tile.world, reach, [deadline] {
@@ -172,7 +185,7 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
           }
         }
         if (!status.ok()) {
-          release();
+          shared_.unary_in_flight.Release(client, cost);
           log->Finish(status);
           respond(HttpErrorResponse(status));
           return;

@@ -257,9 +257,9 @@ int main(int argc, char** argv) {
   if (!config.http_listen.empty()) {
     auto started = scallop::server::HttpListener::Start(
         config.http_listen, "http",
-        [&http_api](const scallop::server::HttpListener::Request& request,
+        [&http_api](const scallop::server::HttpListener::Request& request, const std::string& peer,
                     const scallop::server::HttpListener::Respond& respond) {
-          http_api.Handle(request, respond);
+          http_api.Handle(request, peer, respond);
         },
         config.max_http_connections, config.threads);
     if (!started.ok()) {

@@ -36,7 +36,7 @@ StatusOr<std::unique_ptr<MetricsHttpServer>> MetricsHttpServer::Start(const std:
                                                                       int max_connections) {
   StatusOr<std::unique_ptr<HttpListener>> listener = HttpListener::Start(
       listen, "metrics",
-      [render = std::move(render)](const HttpListener::Request& request,
+      [render = std::move(render)](const HttpListener::Request& request, const std::string&,
                                    const HttpListener::Respond& respond) {
         respond(AnswerScrape(request, render));
       },

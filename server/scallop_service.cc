@@ -11,7 +11,13 @@ namespace scallop::server {
 grpc::Status ServiceContext::Admit(const grpc::ServerContextBase& context, AdmissionBudget& budget,
                                    int64_t cost, std::string& client) {
   client = ClientKey(context, tokens != nullptr);
+  return Admit(client, budget, cost);
+}
+
+grpc::Status ServiceContext::Admit(const std::string& client, AdmissionBudget& budget, int64_t cost,
+                                   double* retry_after) {
   if (const std::optional<double> wait = rate_limiter.TryTake(client)) {
+    if (retry_after != nullptr) *retry_after = *wait;
     return ResourceExhaustedRetryAfter(
         "server: this client's calls are over " + NumberText(config.rate_limit_per_second) +
             " a second (rate_limit_per_second, burst rate_limit_burst " +

@@ -50,14 +50,14 @@ class ScallopService final : public v1::Scallop::CallbackService {
 
   // Calls admitted and not yet finished (unary and streaming), for the metrics.
   int requests_in_flight() const { return shared_.requests_in_flight(); }
+  // What calls share, for the HTTP tiles (http_api.h), which take the same
+  // slots, engine and tokens.
+  ServiceContext& context() { return shared_; }
   // `callback(saturated)` when the unary budget saturates and frees up again
   // (AdmissionBudget::OnSaturationChange).
   void OnSaturationChange(std::function<void(bool)> callback) {
     shared_.unary_in_flight.OnSaturationChange(std::move(callback));
   }
-  // What calls share, for the HTTP tiles (http_api.h), which take the same
-  // slots, engine and tokens.
-  ServiceContext& context() { return shared_; }
 
  private:
   using UnaryWork = std::function<grpc::Status(RequestLog& log)>;

@@ -99,6 +99,11 @@ class ServiceContext {
   // `client` until budget.Release(client, cost).
   grpc::Status Admit(const grpc::ServerContextBase& context, AdmissionBudget& budget, int64_t cost,
                      std::string& client);
+  // The same for a caller known by its client key (client_key.h), such as an
+  // HTTP request; a refusal by the rate limiter writes its delay, in
+  // seconds, to `retry_after` (when not null).
+  grpc::Status Admit(const std::string& client, AdmissionBudget& budget, int64_t cost,
+                     double* retry_after = nullptr);
 
   // INVALID_ARGUMENT naming `field` when a Nearest or NoiseGrid call's
   // positions lie in more than max_nearest_regions distinct regions (what

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "scallop/image/png_image.h"
@@ -11,6 +12,8 @@
 namespace scallop::server {
 namespace {
 
+// NumberText's rule (scallop/base/number_text.h), appended in place: a
+// level-5 tile has half a million coordinates.
 void AppendNumber(std::string& out, double value) {
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);

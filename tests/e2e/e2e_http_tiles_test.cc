@@ -397,6 +397,28 @@ TEST(E2eHttpTileConfigTest, YamlStartsTheListenerAndSetsMaxAge) {
   std::remove(config.c_str());
 }
 
+// Tiles share the per-client rate limit with gRPC: with a burst of 2 and a
+// token every 1,000 s, the third call of one client (tile or GetPoints) is
+// refused with 429 and the limiter's delay in Retry-After.
+TEST(E2eHttpTileLimitsTest, TilesShareThePerClientRateLimit) {
+  const std::string config = ::testing::TempDir() + "e2e_http_tiles_rate.yaml";
+  std::ofstream(config) << "http_listen: 127.0.0.1:0\nrate_limit_per_second: 0.001\n"
+                        << "rate_limit_burst: 2\n";
+  auto server = ScallopdProcess::Start({"--config", config});
+  ASSERT_NE(server, nullptr);
+  const std::string address = HttpAddress(*server);
+  EXPECT_EQ(Fetch(address, http::verb::get, "/v1/worlds/default/tiles/0/0").status, 200);
+  v1::GetPointsRequest request;
+  *request.mutable_rect() = RectToMessage({0, 0, 4, 4});
+  v1::GetPointsResponse response;
+  EXPECT_TRUE(server->Client().GetPoints(request, response).ok());
+  const HttpAnswer refused = Fetch(address, http::verb::get, "/v1/worlds/default/tiles/0/1");
+  EXPECT_EQ(refused.status, 429) << refused.body;
+  EXPECT_NE(refused.body.find("rate_limit_per_second"), std::string::npos) << refused.body;
+  EXPECT_GE(std::stoll(refused.headers.at("retry-after")), 900);
+  std::remove(config.c_str());
+}
+
 TEST(E2eHttpTileAuthTest, TilesNeedATokenForTheirWorld) {
   const std::string tokens = ::testing::TempDir() + "e2e_http_tiles_tokens";
   std::ofstream(tokens) << "any-world-token-0123456789\ncoast-only-token-0123456789 coast\n";
