@@ -32,7 +32,7 @@ struct LoadOptions {
   double duration_seconds = 10;
   double tile_side = 64;
   double warm_side = 256;
-  uint64_t run_seed = 0;  // 0: drawn from std::random_device
+  uint64_t run_seed = 0;  // 0: drawn from std::random_device, and printed
   int timeout_ms = 10000;
   std::string output = "text";
 };
@@ -154,6 +154,7 @@ int Run(const LoadOptions& options) {
   summary.mode = options.mode;
   summary.streams = options.streams;
   summary.tile_side = options.tile_side;
+  summary.run_seed = options.run_seed;
   if (options.output == "json") {
     PrintJson(summary, std::cout);
   } else if (options.output == "tsv") {
@@ -193,7 +194,8 @@ int main(int argc, char** argv) {
   app.add_option("--warm-side", options.warm_side, "Side of the warm square, in d")
       ->check(CLI::Range(1.0, 65536.0))
       ->capture_default_str();
-  app.add_option("--seed", options.run_seed, "Run seed: tile places, cold world (0: random)")
+  app.add_option("--seed", options.run_seed,
+                 "Run seed: tile places, cold world (0: random, printed with the results)")
       ->capture_default_str();
   app.add_option("--timeout-ms", options.timeout_ms, "Deadline of each call")
       ->check(CLI::Range(1, 600000))

@@ -51,8 +51,8 @@ LoadSummary Summarize(const std::vector<StreamTally>& tallies, double seconds) {
 }
 
 void PrintText(const LoadSummary& s, std::ostream& out) {
-  out << fmt::format("target {}  mode {}  streams {}  tile {} d\n", s.target, s.mode, s.streams,
-                     s.tile_side);
+  out << fmt::format("target {}  mode {}  streams {}  tile {} d  seed {}\n", s.target, s.mode,
+                     s.streams, s.tile_side, s.run_seed);
   out << fmt::format("requests {} in {:.2f} s, errors {}\n", s.requests, s.seconds, s.errors);
   out << fmt::format("  {:.1f} requests/s  {:.3g} points/s  {:.1f} MB/s  ({:.0f} points/request)\n",
                      s.requests_per_second, s.points_per_second, s.bytes_per_second / 1e6,
@@ -68,6 +68,7 @@ void PrintJson(const LoadSummary& s, std::ostream& out) {
       {"mode", s.mode},
       {"streams", s.streams},
       {"tile_side", s.tile_side},
+      {"run_seed", s.run_seed},
       {"requests", s.requests},
       {"errors", s.errors},
       {"first_error", s.first_error},

@@ -26,6 +26,7 @@ struct LoadSummary {
   std::string mode;  // "cold" or "warm"
   int streams = 0;
   double tile_side = 0;
+  uint64_t run_seed = 0;  // repeats the run's tiles and cold world (--seed)
 
   int64_t requests = 0;  // successful calls
   int64_t errors = 0;

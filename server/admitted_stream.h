@@ -1,14 +1,14 @@
-// The two ends every streaming call shares: it takes an in-flight slot when it
-// starts (or is shed with RESOURCE_EXHAUSTED), and when it ends it writes its
-// log line and gives the slot back, exactly once.
+// The two ends every streaming call shares: it takes a slot of the streams'
+// budget when it starts (or is shed with RESOURCE_EXHAUSTED), and when it ends
+// it writes its log line and gives the slot back, exactly once.
 #pragma once
 
 #include <grpcpp/support/status.h>
 
 #include <string>
 
-#include "server/in_flight_limit.h"
 #include "server/request_log.h"
+#include "server/service_context.h"
 
 namespace scallop::server {
 
@@ -18,19 +18,21 @@ namespace scallop::server {
 template <typename Reactor>
 class AdmittedStream : public Reactor {
  protected:
-  // `limit` and `metrics` (may be null) must outlive the call.
-  AdmittedStream(InFlightLimit& limit, const char* method, RequestMetrics* metrics)
-      : log_(method, metrics), limit_(limit) {}
+  // `shared` must outlive the call.
+  AdmittedStream(ServiceContext& shared, const char* method)
+      : log_(method, shared.metrics), shared_(shared) {}
 
-  // Takes a slot. When `access` (ServiceContext::Authorize) is not OK or the
-  // server is full, finishes the call and returns false.
-  bool Admit(const grpc::Status& access) {
+  // Takes a slot (every stream costs 1). When `access`
+  // (ServiceContext::Authorize) is not OK, or the client or the server is
+  // over its limits, finishes the call and returns false.
+  bool Admit(const grpc::ServerContextBase& context, const grpc::Status& access) {
     if (!access.ok()) {
       FinishWith(access);
       return false;
     }
-    if (!limit_.TryAdmit()) {
-      FinishWith(limit_.Refusal());
+    if (grpc::Status status = shared_.Admit(context, shared_.streams_in_flight, 1, client_);
+        !status.ok()) {
+      FinishWith(status);
       return false;
     }
     admitted_ = true;
@@ -40,14 +42,15 @@ class AdmittedStream : public Reactor {
   // Logs the call, frees its slot if it had one, and finishes it. Call once.
   void FinishWith(const grpc::Status& status) {
     log_.Finish(status);
-    if (admitted_) limit_.Release();
+    if (admitted_) shared_.streams_in_flight.Release(client_, 1);
     this->Finish(status);
   }
 
   RequestLog log_;
 
  private:
-  InFlightLimit& limit_;
+  ServiceContext& shared_;
+  std::string client_;
   bool admitted_ = false;
 };
 

@@ -9,7 +9,7 @@ grpc::ServerUnaryReactor* ScallopService::DescribeWorld(grpc::CallbackServerCont
                                                         const v1::DescribeWorldRequest* request,
                                                         v1::DescribeWorldResponse* response) {
   const grpc::Status auth = shared_.Authorize(*context, *request);
-  return RunUnary(context, "DescribeWorld", auth, [this, request, response](RequestLog& log) {
+  return RunUnary(context, "DescribeWorld", auth, 1, [this, request, response](RequestLog& log) {
     ResolvedWorld resolved;
     if (grpc::Status status = shared_.worlds.Resolve(*request, resolved); !status.ok())
       return status;

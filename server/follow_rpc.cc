@@ -43,7 +43,7 @@ class FollowReactor final
     : public AdmittedStream<grpc::ServerBidiReactor<v1::FollowRequest, v1::FollowResponse>> {
  public:
   FollowReactor(ServiceContext& shared, grpc::CallbackServerContext* context)
-      : AdmittedStream(shared.streams_in_flight, "Follow", shared.metrics),
+      : AdmittedStream(shared, "Follow"),
         shared_(shared),
         context_(context),
         stall_seconds_(shared.config.follow_stall_seconds),
@@ -51,7 +51,7 @@ class FollowReactor final
         stall_message_(std::make_shared<const std::string>(StallStatus().error_message())),
         idle_message_(std::make_shared<const std::string>(IdleStatus().error_message())),
         timer_(context) {
-    if (!Admit(shared.Authorize(*context))) return;
+    if (!Admit(*context, shared.Authorize(*context))) return;
     Read();
   }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "server/region_warmup.h"
+#include "server/request_cost.h"
 #include "server/scallop_service.h"
 #include "server/status_mapping.h"
 #include "world_messages.h"
@@ -15,6 +16,7 @@ grpc::ServerUnaryReactor* ScallopService::GetPoints(grpc::CallbackServerContext*
                                                     v1::GetPointsResponse* response) {
   return RunUnaryInlineFirst(
       context, "GetPoints", shared_.Authorize(*context, *request),
+      RequestCost(shared_.worlds, *request),
       [this, request, response](RequestLog& log) {
         return AnswerGetPoints(*request, *response, log, /*may_block=*/false);
       },

@@ -83,6 +83,11 @@ grpc::Status AuthorizeHttp(const ServiceContext& shared, const HttpListener::Req
   return AuthorizeBearer(shared.tokens, authorization ? &*authorization : nullptr, world);
 }
 
+std::string HttpClientKey(const ServiceContext& shared, const HttpListener::Request& request) {
+  const std::optional<std::string_view> authorization = AuthorizationOf(request);
+  return shared.tokens && authorization ? TokenKey(*authorization) : "http:anonymous";
+}
+
 void HttpApi::Handle(const HttpListener::Request& request, const HttpListener::Respond& respond) {
   const std::string_view target = AsStdText(request.target());
   const std::string_view path = target.substr(0, target.find('?'));

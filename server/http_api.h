@@ -42,6 +42,12 @@ HttpListener::Response HttpErrorResponse(const grpc::Status& status);
 
 // The request's "authorization" header checked like a gRPC call's metadata
 // (call_authorization.h).
+// The client an HTTP request counts as in the admission budget: its token's
+// key when tokens are checked, else "http:anonymous" (the listener does not
+// pass peer addresses yet), so anonymous tiles together hold at most
+// max_client_share of the unary budget.
+std::string HttpClientKey(const ServiceContext& shared, const HttpListener::Request& request);
+
 grpc::Status AuthorizeHttp(const ServiceContext& shared, const HttpListener::Request& request,
                            const RequestedWorld& world);
 

@@ -7,6 +7,7 @@
 #include "scallop/plane/query_rect.h"
 #include "server/http_api.h"
 #include "server/region_warmup.h"
+#include "server/request_cost.h"
 #include "server/tile_encoding.h"
 
 namespace scallop::server {
@@ -107,8 +108,6 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
     respond(std::move(response));
     return;
   }
-  if (!shared_.unary_in_flight.TryAdmit()) return fail(shared_.unary_in_flight.Refusal());
-
   // The PNG draws points up to its margin beyond the tile, within the
   // precision range (growing past it would refuse the edge tiles).
   Rect reach = tile.rect;
@@ -118,10 +117,16 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
     reach = {std::max(-limit, reach.x0 - margin), std::max(-limit, reach.y0 - margin),
              std::min(limit, reach.x1 + margin), std::min(limit, reach.y1 + margin)};
   }
+  const std::string client = HttpClientKey(shared_, request);
+  const int64_t cost = RegionsCost(tile.world, reach);
+  if (grpc::Status admitted = shared_.unary_in_flight.TryAdmit(client, cost); !admitted.ok()) {
+    return fail(admitted);
+  }
+  auto release = [this, client, cost] { shared_.unary_in_flight.Release(client, cost); };
   response.result(http::status::ok);
   response.set(http::field::content_type, AsBeastText(TileContentType(address.format)));
   // Encodes and answers; on whichever thread has the regions.
-  auto finish = [this, log, reach, format = address.format](
+  auto finish = [log, reach, release, format = address.format](
                     const std::vector<RegionHandle>& regions, Tile tile,
                     HttpListener::Response response, const HttpListener::Respond& respond) {
     tile = CollectTile(regions, reach, std::move(tile));
@@ -129,7 +134,7 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
     if (format == TileFormat::kPng) {
       StatusOr<std::string> png = RenderTilePng(tile);
       if (!png.ok()) {
-        shared_.unary_in_flight.Release();
+        release();
         log->Finish(ToGrpcStatus(png.status()));
         respond(HttpErrorResponse(ToGrpcStatus(png.status())));
         return;
@@ -138,7 +143,7 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
     } else {
       response.body() = format == TileFormat::kJson ? EncodeTileJson(tile) : EncodeTileBinary(tile);
     }
-    shared_.unary_in_flight.Release();
+    release();
     log->Finish(grpc::Status::OK);
     respond(std::move(response));
   };
@@ -148,7 +153,7 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
     return;
   }
   boost::asio::post(
-      shared_.request_pool, [this, log, reach, tile = std::move(tile),
+      shared_.request_pool, [this, log, reach, release, tile = std::move(tile),
                              response = std::move(response), respond, finish]() mutable {
         const auto deadline = std::chrono::steady_clock::now() + kColdTileTimeout;
         grpc::Status status = WarmRegions(shared_.engine, tile.world, reach, [deadline] {
@@ -157,17 +162,22 @@ void HttpApi::AnswerTile(const HttpListener::Request& request,
         if (status.error_code() == grpc::StatusCode::CANCELLED) {
           status = {grpc::StatusCode::DEADLINE_EXCEEDED, "tile: not generated within 30 s"};
         }
-        StatusOr<std::vector<RegionHandle>> regions =
-            status.ok() ? shared_.engine.Regions(tile.world, reach)
-                        : StatusOr<std::vector<RegionHandle>>(Status(StatusCode::kInternal, ""));
-        if (status.ok() && !regions.ok()) status = ToGrpcStatus(regions.status());
+        std::vector<RegionHandle> regions;
+        if (status.ok()) {
+          StatusOr<std::vector<RegionHandle>> resolved = shared_.engine.Regions(tile.world, reach);
+          if (resolved.ok()) {
+            regions = std::move(*resolved);
+          } else {
+            status = ToGrpcStatus(resolved.status());
+          }
+        }
         if (!status.ok()) {
-          shared_.unary_in_flight.Release();
+          release();
           log->Finish(status);
           respond(HttpErrorResponse(status));
           return;
         }
-        finish(*regions, std::move(tile), std::move(response), respond);
+        finish(regions, std::move(tile), std::move(response), respond);
       });
 }
 

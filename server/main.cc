@@ -14,10 +14,12 @@
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/thread_pool.hpp>
 #include <chrono>
+#include <cstdlib>
 #include <iostream>
 #include <set>
 #include <thread>
 
+#include "server/connection_limits.h"
 #include "server/http_api.h"
 #include "server/malloc_tuning.h"
 #include "server/metrics_http_server.h"
@@ -25,6 +27,7 @@
 #include "server/request_metrics.h"
 #include "server/scallop_service.h"
 #include "server/server_config.h"
+#include "server/serving_status.h"
 #include "server/tls_credentials.h"
 #include "server/token_table.h"
 #include "server/world_registry.h"
@@ -82,6 +85,29 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
                "is an error");
   app.add_option("--grace-seconds", flags.grace_seconds, "Time in-flight calls get on SIGTERM")
       ->default_str("10");
+  app.add_option("--hard-exit-seconds", flags.hard_exit_seconds,
+                 "After drain and grace, exit 1 this much later whatever still runs")
+      ->default_str("10");
+  app.add_option("--max-in-flight-cost", flags.max_in_flight_cost,
+                 "Regions the unary calls in flight may touch in all")
+      ->default_str(std::to_string(config.max_in_flight_cost));
+  app.add_option("--max-client-share", flags.max_client_share,
+                 "Share of the in-flight limits one client may hold")
+      ->default_str("0.5");
+  app.add_option("--rate-limit-per-second", flags.rate_limit_per_second,
+                 "Calls a second per client (token, else IP address); 0: no limit")
+      ->default_str("0");
+  app.add_option("--rate-limit-burst", flags.rate_limit_burst, "Burst of --rate-limit-per-second")
+      ->default_str("100");
+  app.add_option("--max-connection-idle-seconds", flags.max_connection_idle_seconds,
+                 "Close connections without a call this long (0: never)")
+      ->default_str("900");
+  app.add_option("--max-connection-age-seconds", flags.max_connection_age_seconds,
+                 "Ask connections older than this to reconnect (0: never)")
+      ->default_str("0");
+  app.add_option("--max-calls-per-connection", flags.max_calls_per_connection,
+                 "Concurrent calls on one connection")
+      ->default_str(std::to_string(config.max_calls_per_connection));
   app.add_option("--drain-seconds", flags.drain_seconds,
                  "NOT_SERVING this long on SIGTERM before new calls are refused")
       ->default_str("0");
@@ -133,6 +159,14 @@ std::optional<int> ParseCommandLine(int argc, char** argv, ServerConfig& config)
   apply("--reuse-port", &ServerConfig::reuse_port);
   apply("--grace-seconds", &ServerConfig::grace_seconds);
   apply("--drain-seconds", &ServerConfig::drain_seconds);
+  apply("--hard-exit-seconds", &ServerConfig::hard_exit_seconds);
+  apply("--max-in-flight-cost", &ServerConfig::max_in_flight_cost);
+  apply("--max-client-share", &ServerConfig::max_client_share);
+  apply("--rate-limit-per-second", &ServerConfig::rate_limit_per_second);
+  apply("--rate-limit-burst", &ServerConfig::rate_limit_burst);
+  apply("--max-connection-idle-seconds", &ServerConfig::max_connection_idle_seconds);
+  apply("--max-connection-age-seconds", &ServerConfig::max_connection_age_seconds);
+  apply("--max-calls-per-connection", &ServerConfig::max_calls_per_connection);
   apply("--page-token-secret", &ServerConfig::page_token_secret);
   apply("--default-world", &ServerConfig::default_world);
   apply("--log-level", &ServerConfig::log_level);
@@ -242,6 +276,7 @@ int main(int argc, char** argv) {
   // gRPC shares ports by default (SO_REUSEPORT): a second scallopd on a port
   // in use would start silently and take half the calls. Only on request.
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, config.reuse_port ? 1 : 0);
+  scallop::server::ApplyConnectionLimits(config, builder);
   builder.AddListeningPort(config.listen, *credentials, &port);
   builder.RegisterService(&service);
   if (!config.reflection) builder.SetOption(std::make_unique<WithoutReflection>());
@@ -250,6 +285,10 @@ int main(int argc, char** argv) {
     spdlog::error("cannot listen on {} (in use? --reuse-port shares a port on purpose)",
                   config.listen);
     return 1;
+  }
+  scallop::server::ServingStatus serving(server->GetHealthCheckService());
+  if (config.not_serving_when_saturated) {
+    service.OnSaturationChange([&serving](bool saturated) { serving.SetSaturated(saturated); });
   }
   const std::string host = config.listen.substr(0, config.listen.rfind(':'));
   std::cout << "scallopd listening on " << host << ':' << port << std::endl;
@@ -283,7 +322,18 @@ int main(int argc, char** argv) {
     if (error) return;
     spdlog::info("signal {}: NOT_SERVING, draining {} s, then {} s of grace for in-flight calls",
                  signal_number, config.drain_seconds, config.grace_seconds);
-    server->GetHealthCheckService()->SetServingStatus(false);
+    serving.SetDraining();
+    // Work that cannot be cancelled (a CGAL triangulation, say) must not keep
+    // the process past every deadline: exit 1 then, whatever still runs.
+    std::thread([&config] {
+      std::this_thread::sleep_for(std::chrono::duration<double>(
+          config.drain_seconds + config.grace_seconds + config.hard_exit_seconds));
+      spdlog::error(
+          "hard exit: calls still running {} s after the grace period (hard_exit_seconds)",
+          config.hard_exit_seconds);
+      spdlog::default_logger()->flush();
+      std::_Exit(1);
+    }).detach();
     std::this_thread::sleep_for(std::chrono::duration<double>(config.drain_seconds));
     // Refuses new calls at once; calls still running at the deadline are cancelled.
     const auto deadline = std::chrono::system_clock::now() +

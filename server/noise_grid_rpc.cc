@@ -5,6 +5,7 @@
 
 #include "noise_messages.h"
 #include "scallop/noise/noise_grid.h"
+#include "server/request_cost.h"
 #include "server/scallop_service.h"
 #include "server/status_mapping.h"
 #include "world_messages.h"
@@ -15,49 +16,50 @@ grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext*
                                                     const v1::NoiseGridRequest* request,
                                                     v1::NoiseGridResponse* response) {
   const grpc::Status auth = shared_.Authorize(*context, *request);
-  return RunUnary(context, "NoiseGrid", auth, [this, context, request, response](RequestLog& log) {
-    ResolvedWorld resolved;
-    if (grpc::Status status = shared_.worlds.Resolve(*request, resolved); !status.ok())
-      return status;
-    const World& world = resolved.world;
-    log.set_world(world.Describe());
-    const std::optional<NoiseChannel> channel = NoiseChannelFromMessage(request->channel());
-    if (!channel) {
-      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
-                          "channel: required, one of NOISE_CHANNEL_F1, _F2, _F2_MINUS_F1, _ID, "
-                          "_CELL_VALUE");
-    }
-    const NoiseGridSpec spec{.origin = {request->origin_x(), request->origin_y()},
-                             .step = request->step(),
-                             .width = request->width(),
-                             .height = request->height(),
-                             .channel = *channel};
-    if (Status status = ValidateNoiseGrid(world, spec, shared_.config.max_noise_grid_samples);
-        !status.ok()) {
-      // The core names the limit's value; say which setting it is.
-      if (status.message().starts_with("width * height")) {
-        status = {status.code(), status.message() + " (max_noise_grid_samples)"};
-      }
-      return ToGrpcStatus(status);
-    }
-    if (grpc::Status status =
-            shared_.CheckNearestRegions(NoiseGridRegions(world, spec), "step: the samples",
-                                        "use a smaller step or fewer samples");
-        !status.ok()) {
-      return status;
-    }
-    StatusOr<NoiseImage> image =
-        EvaluateNoiseGrid(shared_.nearest_lookup, world, spec,
-                          shared_.config.max_noise_grid_samples, StopWhenGone(context));
-    if (!image.ok()) return ToGrpcStatus(image.status());
-    *response->mutable_world() = WorldToMessage(world);
-    response->set_width(image->width);
-    response->set_height(image->height);
-    response->mutable_values()->Add(image->values.begin(), image->values.end());
-    response->mutable_ids()->Add(image->ids.begin(), image->ids.end());
-    log.add_points(int64_t{image->width} * image->height);
-    return grpc::Status::OK;
-  });
+  return RunUnary(
+      context, "NoiseGrid", auth,
+      RequestCost(shared_.worlds, *request, shared_.config.max_nearest_regions),
+      [this, context, request, response](RequestLog& log) {
+        World world;
+        if (grpc::Status status = shared_.ResolveWorld(*request, log, world); !status.ok())
+          return status;
+        const std::optional<NoiseChannel> channel = NoiseChannelFromMessage(request->channel());
+        if (!channel) {
+          return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                              "channel: required, one of NOISE_CHANNEL_F1, _F2, _F2_MINUS_F1, _ID, "
+                              "_CELL_VALUE");
+        }
+        const NoiseGridSpec spec{.origin = {request->origin_x(), request->origin_y()},
+                                 .step = request->step(),
+                                 .width = request->width(),
+                                 .height = request->height(),
+                                 .channel = *channel};
+        if (Status status = ValidateNoiseGrid(world, spec, shared_.config.max_noise_grid_samples);
+            !status.ok()) {
+          // The core names the limit's value; say which setting it is.
+          if (status.message().starts_with("width * height")) {
+            status = {status.code(), status.message() + " (max_noise_grid_samples)"};
+          }
+          return ToGrpcStatus(status);
+        }
+        if (grpc::Status status =
+                shared_.CheckNearestRegions(NoiseGridRegions(world, spec), "step: the samples",
+                                            "use a smaller step or fewer samples");
+            !status.ok()) {
+          return status;
+        }
+        StatusOr<NoiseImage> image =
+            EvaluateNoiseGrid(shared_.nearest_lookup, world, spec,
+                              shared_.config.max_noise_grid_samples, StopWhenGone(context));
+        if (!image.ok()) return ToGrpcStatus(image.status());
+        *response->mutable_world() = WorldToMessage(world);
+        response->set_width(image->width);
+        response->set_height(image->height);
+        response->mutable_values()->Add(image->values.begin(), image->values.end());
+        response->mutable_ids()->Add(image->ids.begin(), image->ids.end());
+        log.add_points(int64_t{image->width} * image->height);
+        return grpc::Status::OK;
+      });
 }
 
 }  // namespace scallop::server

@@ -3,7 +3,23 @@
 
 #include <boost/asio/post.hpp>
 
+#include "scallop/base/number_text.h"
+#include "server/retry_status.h"
+
 namespace scallop::server {
+
+grpc::Status ServiceContext::Admit(const grpc::ServerContextBase& context, AdmissionBudget& budget,
+                                   int64_t cost, std::string& client) {
+  client = ClientKey(context, tokens != nullptr);
+  if (const std::optional<double> wait = rate_limiter.TryTake(client)) {
+    return ResourceExhaustedRetryAfter(
+        "server: this client's calls are over " + NumberText(config.rate_limit_per_second) +
+            " a second (rate_limit_per_second, burst rate_limit_burst " +
+            NumberText(config.rate_limit_burst) + ")",
+        *wait);
+  }
+  return budget.TryAdmit(client, cost);
+}
 
 grpc::Status ServiceContext::CheckNearestRegions(int64_t regions, const char* field,
                                                  const char* advice) const {
@@ -16,16 +32,17 @@ grpc::Status ServiceContext::CheckNearestRegions(int64_t regions, const char* fi
 
 grpc::ServerUnaryReactor* ScallopService::RunUnary(grpc::CallbackServerContext* context,
                                                    const char* method, const grpc::Status& access,
-                                                   UnaryWork work) {
+                                                   int64_t cost, UnaryWork work) {
   return RunUnaryInlineFirst(
-      context, method, access, [](RequestLog&) { return std::optional<grpc::Status>(); },
+      context, method, access, cost, [](RequestLog&) { return std::optional<grpc::Status>(); },
       std::move(work));
 }
 
 grpc::ServerUnaryReactor* ScallopService::RunUnaryInlineFirst(grpc::CallbackServerContext* context,
                                                               const char* method,
                                                               const grpc::Status& access,
-                                                              InlineWork quick, UnaryWork work) {
+                                                              int64_t cost, InlineWork quick,
+                                                              UnaryWork work) {
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
   auto log = std::make_shared<RequestLog>(method, shared_.metrics);
   if (!access.ok()) {
@@ -33,26 +50,28 @@ grpc::ServerUnaryReactor* ScallopService::RunUnaryInlineFirst(grpc::CallbackServ
     reactor->Finish(access);
     return reactor;
   }
-  if (!shared_.unary_in_flight.TryAdmit()) {
-    const grpc::Status status = shared_.unary_in_flight.Refusal();
+  std::string client;
+  if (grpc::Status status = shared_.Admit(*context, shared_.unary_in_flight, cost, client);
+      !status.ok()) {
     log->Finish(status);
     reactor->Finish(status);
     return reactor;
   }
   if (std::optional<grpc::Status> status = quick(*log)) {
     log->Finish(*status);
-    shared_.unary_in_flight.Release();
+    shared_.unary_in_flight.Release(client, cost);
     reactor->Finish(*status);
     return reactor;
   }
-  boost::asio::post(shared_.request_pool, [this, context, reactor, log, work = std::move(work)] {
-    const grpc::Status status = context->IsCancelled()
-                                    ? grpc::Status(grpc::StatusCode::CANCELLED, "client cancelled")
-                                    : work(*log);
-    log->Finish(status);
-    shared_.unary_in_flight.Release();
-    reactor->Finish(status);
-  });
+  boost::asio::post(
+      shared_.request_pool, [this, context, reactor, log, client, cost, work = std::move(work)] {
+        const grpc::Status status =
+            context->IsCancelled() ? grpc::Status(grpc::StatusCode::CANCELLED, "client cancelled")
+                                   : work(*log);
+        log->Finish(status);
+        shared_.unary_in_flight.Release(client, cost);
+        reactor->Finish(status);
+      });
   return reactor;
 }
 

@@ -50,6 +50,11 @@ class ScallopService final : public v1::Scallop::CallbackService {
 
   // Calls admitted and not yet finished (unary and streaming), for the metrics.
   int requests_in_flight() const { return shared_.requests_in_flight(); }
+  // `callback(saturated)` when the unary budget saturates and frees up again
+  // (AdmissionBudget::OnSaturationChange).
+  void OnSaturationChange(std::function<void(bool)> callback) {
+    shared_.unary_in_flight.OnSaturationChange(std::move(callback));
+  }
   // What calls share, for the HTTP tiles (http_api.h), which take the same
   // slots, engine and tokens.
   ServiceContext& context() { return shared_; }
@@ -60,17 +65,18 @@ class ScallopService final : public v1::Scallop::CallbackService {
   using InlineWork = std::function<std::optional<grpc::Status>(RequestLog& log)>;
 
   // Finishes the call with `access` when it is not OK (ServiceContext::Authorize);
-  // else admits the call (or sheds it with RESOURCE_EXHAUSTED), runs `work` on
-  // the request pool unless the client has gone, logs and finishes the call.
+  // else admits the call at `cost` (request_cost.h; or sheds it with
+  // RESOURCE_EXHAUSTED), runs `work` on the request pool unless the client has
+  // gone, logs and finishes the call.
   grpc::ServerUnaryReactor* RunUnary(grpc::CallbackServerContext* context, const char* method,
-                                     const grpc::Status& access, UnaryWork work);
+                                     const grpc::Status& access, int64_t cost, UnaryWork work);
   // As RunUnary, but first tries `quick` on gRPC's own thread, and hands the
   // call to the request pool (`work`) only when `quick` returns nullopt. A
   // warm query is a copy of tens of microseconds; the hop to the pool and
   // back costs more than that in context switches.
   grpc::ServerUnaryReactor* RunUnaryInlineFirst(grpc::CallbackServerContext* context,
                                                 const char* method, const grpc::Status& access,
-                                                InlineWork quick, UnaryWork work);
+                                                int64_t cost, InlineWork quick, UnaryWork work);
 
   // GetPoints' answer; with may_block false, nullopt when the rectangle's
   // regions are not all cached (nothing is generated or waited on then).

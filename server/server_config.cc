@@ -7,6 +7,7 @@
 #include <charconv>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 namespace scallop::server {
@@ -20,6 +21,38 @@ StatusOr<World> WorldFromFields(const std::string& where, uint64_t seed, double 
       {.seed = seed, .min_distance = min_distance, .algorithm = *algorithm, .density = density});
   if (!world.ok()) return InvalidArgument(where + ": " + world.status().message());
   return world;
+}
+
+// The settings of limits per client and per connection.
+Status ValidateClientLimits(const ServerConfig& config) {
+  if (config.max_in_flight_cost < 1) return InvalidArgument("max_in_flight_cost: must be >= 1");
+  if (!(config.max_client_share > 0 && config.max_client_share <= 1)) {
+    return InvalidArgument("max_client_share: must be in (0, 1]");
+  }
+  if (!(config.rate_limit_per_second >= 0 && config.rate_limit_per_second <= 1e9)) {
+    return InvalidArgument("rate_limit_per_second: must be in [0, 1e9] (0: no limit)");
+  }
+  if (!(config.rate_limit_burst >= 1 && config.rate_limit_burst <= 1e9)) {
+    return InvalidArgument("rate_limit_burst: must be in [1, 1e9]");
+  }
+  if (config.max_calls_per_connection < 1 || config.max_calls_per_connection > 65536) {
+    return InvalidArgument("max_calls_per_connection: must be in 1..65536");
+  }
+  // Milliseconds in an int for gRPC: up to about 24 days.
+  for (const auto& [name, value, zero_allowed] :
+       {std::tuple{"keepalive_seconds", config.keepalive_seconds, false},
+        {"keepalive_timeout_seconds", config.keepalive_timeout_seconds, false},
+        {"min_client_ping_seconds", config.min_client_ping_seconds, false},
+        {"max_connection_idle_seconds", config.max_connection_idle_seconds, true},
+        {"max_connection_age_seconds", config.max_connection_age_seconds, true},
+        {"max_connection_age_grace_seconds", config.max_connection_age_grace_seconds, true},
+        {"hard_exit_seconds", config.hard_exit_seconds, true}}) {
+    if (!((zero_allowed ? value >= 0 : value > 0) && value <= 2e6)) {
+      return InvalidArgument(std::string(name) + ": must be in " + (zero_allowed ? "[0" : "(0") +
+                             ", 2e6] seconds");
+    }
+  }
+  return Status::Ok();
 }
 
 }  // namespace
@@ -57,7 +90,20 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
                                     "tls_key",
                                     "tls_client_ca",
                                     "auth_tokens",
-                                    "reflection"};
+                                    "reflection",
+                                    "max_in_flight_cost",
+                                    "max_client_share",
+                                    "rate_limit_per_second",
+                                    "rate_limit_burst",
+                                    "not_serving_when_saturated",
+                                    "max_calls_per_connection",
+                                    "keepalive_seconds",
+                                    "keepalive_timeout_seconds",
+                                    "min_client_ping_seconds",
+                                    "max_connection_idle_seconds",
+                                    "max_connection_age_seconds",
+                                    "max_connection_age_grace_seconds",
+                                    "hard_exit_seconds"};
   std::string key;
   try {
     const YAML::Node root = YAML::LoadFile(path);
@@ -102,6 +148,19 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
     read("tls_client_ca", config.tls_client_ca);
     read("auth_tokens", config.auth_tokens);
     read("reflection", config.reflection);
+    read("max_in_flight_cost", config.max_in_flight_cost);
+    read("max_client_share", config.max_client_share);
+    read("rate_limit_per_second", config.rate_limit_per_second);
+    read("rate_limit_burst", config.rate_limit_burst);
+    read("not_serving_when_saturated", config.not_serving_when_saturated);
+    read("max_calls_per_connection", config.max_calls_per_connection);
+    read("keepalive_seconds", config.keepalive_seconds);
+    read("keepalive_timeout_seconds", config.keepalive_timeout_seconds);
+    read("min_client_ping_seconds", config.min_client_ping_seconds);
+    read("max_connection_idle_seconds", config.max_connection_idle_seconds);
+    read("max_connection_age_seconds", config.max_connection_age_seconds);
+    read("max_connection_age_grace_seconds", config.max_connection_age_grace_seconds);
+    read("hard_exit_seconds", config.hard_exit_seconds);
     for (const auto& entry : root["worlds"]) {
       const std::string name = entry.first.as<std::string>();
       const YAML::Node& fields = entry.second;
@@ -218,6 +277,7 @@ Status ValidateConfig(const ServerConfig& config) {
   if (!config.tls_client_ca.empty() && config.tls_cert.empty()) {
     return InvalidArgument("tls_client_ca: needs tls_cert and tls_key (mutual TLS is TLS)");
   }
+  if (Status status = ValidateClientLimits(config); !status.ok()) return status;
   if (!config.worlds.contains(config.default_world)) {
     return InvalidArgument("default_world: no world named '" + config.default_world + "'");
   }

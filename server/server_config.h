@@ -66,6 +66,41 @@ struct ServerConfig {
   // Serve gRPC reflection (what lets grpcurl list the API). Off hides the
   // API's shape from whoever can reach the port; the health check stays.
   bool reflection = true;
+  // Limits no one client can exhaust alone (admission_budget.h, rate_limiter.h).
+  // Regions the unary calls in flight may touch in all: 16 of the largest
+  // square GetPoints (about 4,000 regions each).
+  int64_t max_in_flight_cost = 65536;
+  // What one client may hold of max_in_flight, max_in_flight_cost and
+  // max_streams_in_flight.
+  double max_client_share = 0.5;
+  // Calls a second per client, in bursts of rate_limit_burst; 0: no limit.
+  // Off by default: behind a proxy every client is the proxy (client_key.h).
+  double rate_limit_per_second = 0;
+  double rate_limit_burst = 100;
+  // Health NOT_SERVING while the unary budget is saturated (from a refusal
+  // for want of room until half of it is free), so balancers send calls to
+  // other replicas; SERVING again after.
+  bool not_serving_when_saturated = true;
+  // Connections (connection_limits.h). Concurrent calls on one connection
+  // (HTTP/2 streams); a client needing more opens more connections.
+  int max_calls_per_connection = 128;
+  // The server pings a connection idle this long, and closes it when the ping
+  // is not answered within keepalive_timeout_seconds (dead peers).
+  double keepalive_seconds = 60;
+  double keepalive_timeout_seconds = 20;
+  // Clients may ping at most this often without data; more often, twice,
+  // and the connection is closed (ENHANCE_YOUR_CALM).
+  double min_client_ping_seconds = 10;
+  // A connection with no call for this long is closed (GOAWAY); 0: never.
+  double max_connection_idle_seconds = 900;
+  // A connection older than this is asked to reconnect (GOAWAY), its calls
+  // getting max_connection_age_grace_seconds to finish; 0: never. Set it
+  // behind a balancer so that new replicas get their share of clients.
+  double max_connection_age_seconds = 0;
+  double max_connection_age_grace_seconds = 30;
+  // After SIGTERM, drain_seconds + grace_seconds + this, scallopd exits 1
+  // whatever is still running (work that cannot be cancelled).
+  double hard_exit_seconds = 10;
   std::string default_world = "default";
   // Named worlds, sorted by name. "default" (seed 1, d 1, A3) is built in.
   std::map<std::string, World> worlds{{"default", *World::Create({.seed = 1})}};

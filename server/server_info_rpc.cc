@@ -8,7 +8,7 @@ grpc::ServerUnaryReactor* ScallopService::GetServerInfo(grpc::CallbackServerCont
                                                         const v1::GetServerInfoRequest*,
                                                         v1::GetServerInfoResponse* response) {
   const grpc::Status auth = shared_.Authorize(*context);
-  return RunUnary(context, "GetServerInfo", auth, [this, response](RequestLog&) {
+  return RunUnary(context, "GetServerInfo", auth, 1, [this, response](RequestLog&) {
     response->set_generator_version(kGeneratorVersion);
     response->set_region_side_in_d(kRegionSideInD);
     response->set_precision_range_in_d(kPrecisionRangeInD);
@@ -26,6 +26,10 @@ grpc::ServerUnaryReactor* ScallopService::GetServerInfo(grpc::CallbackServerCont
     limits.set_stream_stall_seconds(shared_.config.stream_stall_seconds);
     limits.set_follow_stall_seconds(shared_.config.follow_stall_seconds);
     limits.set_follow_idle_seconds(shared_.config.follow_idle_seconds);
+    limits.set_max_in_flight_cost(shared_.config.max_in_flight_cost);
+    limits.set_max_client_share(shared_.config.max_client_share);
+    limits.set_rate_limit_per_second(shared_.config.rate_limit_per_second);
+    limits.set_rate_limit_burst(shared_.config.rate_limit_burst);
     response->set_default_world(shared_.worlds.default_name());
     for (const std::string& name : shared_.worlds.names()) response->add_world_names(name);
     return grpc::Status::OK;

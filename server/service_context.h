@@ -14,9 +14,11 @@
 #include "scallop/noise/nearest_lookup.h"
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/query_rect.h"
+#include "server/admission_budget.h"
 #include "server/call_authorization.h"
-#include "server/in_flight_limit.h"
+#include "server/client_key.h"
 #include "server/page_token.h"
+#include "server/rate_limiter.h"
 #include "server/request_log.h"
 #include "server/server_config.h"
 #include "server/status_mapping.h"
@@ -41,8 +43,15 @@ class ServiceContext {
         request_pool(request_pool),
         metrics(metrics),
         tokens(tokens),
-        unary_in_flight(config.max_in_flight, "max_in_flight"),
-        streams_in_flight(config.max_streams_in_flight, "max_streams_in_flight") {}
+        unary_in_flight({.max_calls = config.max_in_flight,
+                         .max_cost = config.max_in_flight_cost,
+                         .client_share = config.max_client_share}),
+        streams_in_flight({.max_calls = config.max_streams_in_flight,
+                           .max_cost = config.max_streams_in_flight,
+                           .client_share = config.max_client_share,
+                           .calls_setting = "max_streams_in_flight",
+                           .cost_setting = "max_streams_in_flight"}),
+        rate_limiter(config.rate_limit_per_second, config.rate_limit_burst) {}
   ServiceContext(const ServiceContext&) = delete;
   ServiceContext& operator=(const ServiceContext&) = delete;
 
@@ -58,16 +67,23 @@ class ServiceContext {
     return AuthorizeCall(tokens, context, {});
   }
 
+  // The world a request names, resolved and logged.
+  template <typename Request>
+  grpc::Status ResolveWorld(const Request& request, RequestLog& log, World& world) const {
+    ResolvedWorld resolved;
+    if (grpc::Status status = worlds.Resolve(request, resolved); !status.ok()) return status;
+    world = resolved.world;
+    log.set_world(world.Describe());
+    return grpc::Status::OK;
+  }
+
   // The world and rectangle a query names, resolved, logged and checked by
   // the rectangle rule against `max_area` (named `limit_name` in errors):
   // the prelude of every RPC that reads a rectangle.
   template <typename Request>
   grpc::Status ResolveQuery(const Request& request, double max_area, const char* limit_name,
                             RequestLog& log, World& world, Rect& rect) const {
-    ResolvedWorld resolved;
-    if (grpc::Status status = worlds.Resolve(request, resolved); !status.ok()) return status;
-    world = resolved.world;
-    log.set_world(world.Describe());
+    if (grpc::Status status = ResolveWorld(request, log, world); !status.ok()) return status;
     rect = RectFromMessage(request.rect());
     log.set_rect(rect);
     if (!request.has_rect()) {
@@ -76,6 +92,13 @@ class ServiceContext {
     }
     return ToGrpcStatus(CheckQueryRect(world, rect, {.max_area = max_area, .name = limit_name}));
   }
+
+  // Admits a call that passed Authorize: its client's rate limit
+  // (RESOURCE_EXHAUSTED with a retry delay, retry_status.h), then room for
+  // `cost` in `budget`. On OK the call holds `cost` under the key written to
+  // `client` until budget.Release(client, cost).
+  grpc::Status Admit(const grpc::ServerContextBase& context, AdmissionBudget& budget, int64_t cost,
+                     std::string& client);
 
   // INVALID_ARGUMENT naming `field` when a Nearest or NoiseGrid call's
   // positions lie in more than max_nearest_regions distinct regions (what
@@ -96,8 +119,9 @@ class ServiceContext {
   const TokenTable* const tokens;
   // Nearest and NoiseGrid: search grids cached across requests, on engine's regions.
   NearestLookup nearest_lookup{engine};
-  InFlightLimit unary_in_flight;    // unary calls (max_in_flight)
-  InFlightLimit streams_in_flight;  // StreamPoints and Follow (max_streams_in_flight)
+  AdmissionBudget unary_in_flight;    // unary calls (max_in_flight, max_in_flight_cost)
+  AdmissionBudget streams_in_flight;  // StreamPoints and Follow (max_streams_in_flight)
+  RateLimiter rate_limiter;           // calls of every kind, per client
 };
 
 // True once the call's client has cancelled or its deadline has passed: what

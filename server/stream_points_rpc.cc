@@ -19,13 +19,13 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
  public:
   StreamPointsReactor(ServiceContext& shared, grpc::CallbackServerContext* context,
                       const v1::StreamPointsRequest& request)
-      : AdmittedStream(shared.streams_in_flight, "StreamPoints", shared.metrics),
+      : AdmittedStream(shared, "StreamPoints"),
         shared_(shared),
         context_(context),
         stall_seconds_(shared.config.stream_stall_seconds),
         stall_message_(std::make_shared<const std::string>(StallStatus().error_message())),
         timer_(context) {
-    if (!Admit(shared.Authorize(*context, request))) return;
+    if (!Admit(*context, shared.Authorize(*context, request))) return;
     if (grpc::Status status = Prepare(request); !status.ok()) {
       FinishWith(status);
       return;

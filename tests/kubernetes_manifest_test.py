@@ -55,14 +55,21 @@ def check_structure(documents, dockerfile):
     for probe in ("readinessProbe", "livenessProbe"):
         if container[probe]["grpc"]["port"] != ports["grpc"]:
             fail(f"{probe} does not check the gRPC health service on the grpc port")
+    # Saturation turns the server's health NOT_SERVING: that must take the pod
+    # out of the Service (readiness), not restart it (liveness).
+    if container["readinessProbe"]["grpc"].get("service", "") != "":
+        fail("readinessProbe must ask about the whole server (no service name)")
+    if container["livenessProbe"]["grpc"].get("service") != "liveness":
+        fail("livenessProbe must ask the 'liveness' service, which stays SERVING under load")
     uid = re.search(r"useradd .*--uid (\d+)", dockerfile)
     if not uid or pod["securityContext"]["runAsUser"] != int(uid.group(1)):
         fail("runAsUser differs from the Dockerfile's user")
     limit = mebibytes(container["resources"]["limits"]["memory"])
     if limit < config["cache_megabytes"] + 128:
         fail(f"memory limit {limit} Mi leaves under 128 Mi beside the cache budget")
-    if pod["terminationGracePeriodSeconds"] < config["drain_seconds"] + config["grace_seconds"]:
-        fail("terminationGracePeriodSeconds is shorter than drain_seconds + grace_seconds")
+    shutdown = config["drain_seconds"] + config["grace_seconds"] + config.get("hard_exit_seconds", 10)
+    if pod["terminationGracePeriodSeconds"] < shutdown:
+        fail("terminationGracePeriodSeconds is shorter than drain + grace + hard exit seconds")
     selector = deployment["spec"]["selector"]["matchLabels"]
     for service in by_kind["Service"]:
         if service["spec"]["selector"] != selector:

@@ -16,6 +16,7 @@ struct HealthArguments {
   std::string server;
   double timeout_seconds = 2;
   bool quiet = false;
+  std::string service;             // "": the whole server
   ConnectionArguments connection;  // TLS (the health service needs no token)
 };
 
@@ -27,9 +28,11 @@ int RunHealth(const HealthArguments& arguments) {
   }
   client::ScallopClient& client = *connected;
   bool serving = false;
-  const grpc::Status status =
-      client.CheckHealth(serving, {.timeout = std::chrono::milliseconds(
-                                       static_cast<int64_t>(arguments.timeout_seconds * 1000))});
+  const grpc::Status status = client.CheckHealth(
+      serving,
+      {.timeout =
+           std::chrono::milliseconds(static_cast<int64_t>(arguments.timeout_seconds * 1000))},
+      arguments.service);
   if (!status.ok()) {
     if (!arguments.quiet) {
       std::cerr << "scallop health: " << client::DescribeStatus(status) << '\n';
@@ -54,6 +57,9 @@ CommandRunner RegisterHealth(CLI::App& app) {
       ->check(CLI::Range(0.001, 3600.0))
       ->default_str("2");
   command->add_flag("--quiet", arguments->quiet, "Print nothing; the exit code says it");
+  command->add_option("--service", arguments->service,
+                      "Health service to ask: none for the whole server (NOT_SERVING while "
+                      "draining or saturated), 'liveness' for whether it answers at all");
   AddConnectionOptions(*command, arguments->connection);
   return [arguments] { return RunHealth(*arguments); };
 }

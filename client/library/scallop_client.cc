@@ -1,6 +1,7 @@
 // ScallopClient: unary calls, paging, stream reading and the health check.
 #include "scallop_client.h"
 
+#include "google/rpc/status.pb.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "service_config.h"
 #include "status_code_name.h"
@@ -135,18 +136,36 @@ grpc::Status ScallopClient::NoiseGrid(const v1::NoiseGridRequest& request,
   return stub_->NoiseGrid(&context, request, &response);
 }
 
-grpc::Status ScallopClient::CheckHealth(bool& serving, const CallOptions& options) {
+grpc::Status ScallopClient::CheckHealth(bool& serving, const CallOptions& options,
+                                        const std::string& service) {
   grpc::ClientContext context;
   Configure(context, options);
+  grpc::health::v1::HealthCheckRequest request;
+  request.set_service(service);
   grpc::health::v1::HealthCheckResponse response;
-  const grpc::Status status = grpc::health::v1::Health::NewStub(channel_)->Check(
-      &context, grpc::health::v1::HealthCheckRequest(), &response);
+  const grpc::Status status =
+      grpc::health::v1::Health::NewStub(channel_)->Check(&context, request, &response);
   serving = status.ok() && response.status() == grpc::health::v1::HealthCheckResponse::SERVING;
   return status;
 }
 
 std::string DescribeStatus(const grpc::Status& status) {
   return std::string(StatusCodeName(status.error_code())) + ": " + status.error_message();
+}
+
+double RetryAfterSeconds(const grpc::Status& status) {
+  google::rpc::Status details;
+  if (status.error_details().empty() || !details.ParseFromString(status.error_details())) {
+    return -1;
+  }
+  for (const google::protobuf::Any& any : details.details()) {
+    google::rpc::RetryInfo retry;
+    if (any.UnpackTo(&retry)) {
+      return static_cast<double>(retry.retry_delay().seconds()) +
+             retry.retry_delay().nanos() * 1e-9;
+    }
+  }
+  return -1;
 }
 
 }  // namespace scallop::client

@@ -91,8 +91,11 @@ class ScallopClient {
   grpc::Status NoiseGrid(const v1::NoiseGridRequest& request, v1::NoiseGridResponse& response,
                          const CallOptions& options = {});
 
-  // The standard health check of the whole server: true when SERVING.
-  grpc::Status CheckHealth(bool& serving, const CallOptions& options = {});
+  // The standard health check: true when SERVING. `service` "" asks about
+  // the server as a whole (NOT_SERVING while draining or saturated);
+  // scallopd's "liveness" only whether the process answers.
+  grpc::Status CheckHealth(bool& serving, const CallOptions& options = {},
+                           const std::string& service = "");
 
   const std::shared_ptr<grpc::Channel>& channel() const { return channel_; }
 
@@ -104,5 +107,10 @@ class ScallopClient {
 
 // "INVALID_ARGUMENT: rect.x0: must be finite", for messages on stderr.
 std::string DescribeStatus(const grpc::Status& status);
+
+// How long the server asks the client to wait before calling again, in
+// seconds: the google.rpc.RetryInfo of a rate-limited call's status details
+// (RESOURCE_EXHAUSTED); -1 when the status carries none.
+double RetryAfterSeconds(const grpc::Status& status);
 
 }  // namespace scallop::client

@@ -18,7 +18,6 @@
   const MAX_ZOOM = 400;  // pixels per d
   const MAX_TILES_KEPT = 600;
   const MAX_FETCHES = 6;
-  const NOISE_BLOCK = 4;  // the background is computed every NOISE_BLOCK CSS pixels
   const PRECISION_LIMIT_IN_D = 2 ** 32;
 
   const canvas = document.getElementById('plane');
@@ -249,99 +248,158 @@
     return wanted;
   }
 
-  // ---- The points near the screen, gridded by d -------------------------
+  // ---- The loaded points, gridded by d ---------------------------------
 
-  // A grid of cells of side d over the view grown by 3 d: cell c holds
-  // points cellPoints[cellStart[c] .. cellStart[c+1]). Built each frame.
-  function gridPoints(ready, margin) {
+  // Every point of the ready tiles in typed arrays, with a grid of cells of
+  // side d over their tiles: cell c holds points cellPoints[cellStart[c] ..
+  // cellStart[c + 1]). Rebuilt only when the set of ready tiles changes, so
+  // panning over loaded tiles rebuilds nothing.
+  let grid = null;
+  let gridKey = '';
+  function buildGrid(ready) {
     const d = minDistance();
-    const [x0, y0, x1, y1] = viewRect();
-    const gx0 = Math.floor((x0 - margin) / d), gy0 = Math.floor((y0 - margin) / d);
-    const columns = Math.floor((x1 + margin) / d) - gx0 + 1;
-    const rows = Math.floor((y1 + margin) / d) - gy0 + 1;
-    const xs = [], ys = [], owner = [], index = [];
+    let n = 0, x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
     for (const tile of ready) {
-      const p = tile.entry.points;
-      for (let k = 0; k < p.n; ++k) {
-        const x = p.xs[k], y = p.ys[k];
-        if (x < x0 - margin || x >= x1 + margin || y < y0 - margin || y >= y1 + margin) continue;
-        xs.push(x); ys.push(y); owner.push(p); index.push(k);
-      }
+      n += tile.entry.points.n;
+      x0 = Math.min(x0, tile.i * tile.side);
+      y0 = Math.min(y0, tile.j * tile.side);
+      x1 = Math.max(x1, (tile.i + 1) * tile.side);
+      y1 = Math.max(y1, (tile.j + 1) * tile.side);
     }
-    const cellOf = new Int32Array(xs.length);
+    const xs = new Float64Array(n), ys = new Float64Array(n);
+    const tileOf = new Uint16Array(n), index = new Uint32Array(n);
+    const owners = ready.map((tile) => tile.entry.points);
+    let k = 0;
+    owners.forEach((points, t) => {
+      xs.set(points.xs, k);
+      ys.set(points.ys, k);
+      for (let m = 0; m < points.n; ++m, ++k) { tileOf[k] = t; index[k] = m; }
+    });
+    const gx0 = n ? Math.floor(x0 / d) : 0, gy0 = n ? Math.floor(y0 / d) : 0;
+    const columns = n ? Math.floor(x1 / d) - gx0 + 1 : 1, rows = n ? Math.floor(y1 / d) - gy0 + 1 : 1;
+    const cellOf = new Int32Array(n);
     const cellStart = new Int32Array(columns * rows + 1);
-    for (let k = 0; k < xs.length; ++k) {
-      const cx = Math.min(columns - 1, Math.max(0, Math.floor(xs[k] / d) - gx0));
-      const cy = Math.min(rows - 1, Math.max(0, Math.floor(ys[k] / d) - gy0));
-      cellOf[k] = cy * columns + cx;
-      ++cellStart[cellOf[k] + 1];
+    for (let m = 0; m < n; ++m) {
+      const cx = Math.min(columns - 1, Math.max(0, Math.floor(xs[m] / d) - gx0));
+      const cy = Math.min(rows - 1, Math.max(0, Math.floor(ys[m] / d) - gy0));
+      cellOf[m] = cy * columns + cx;
+      ++cellStart[cellOf[m] + 1];
     }
     for (let c = 0; c < columns * rows; ++c) cellStart[c + 1] += cellStart[c];
     const fill = cellStart.slice(0, columns * rows);
-    const cellPoints = new Int32Array(xs.length);
-    for (let k = 0; k < xs.length; ++k) cellPoints[fill[cellOf[k]]++] = k;
-    return { d, gx0, gy0, columns, rows, cellStart, cellPoints, xs, ys, owner, index };
+    const cellPoints = new Int32Array(n);
+    for (let m = 0; m < n; ++m) cellPoints[fill[cellOf[m]]++] = m;
+    return { d, n, gx0, gy0, columns, rows, cellStart, cellPoints, xs, ys, owners, tileOf, index };
   }
 
-  // The nearest and second nearest points to (x, y) within 2 cells:
-  // {first, second, f1, f2} (indices into the grid, distances), squared
-  // distances compared as the server does (ties aside).
-  function nearestTwo(grid, x, y) {
-    const cx = Math.floor(x / grid.d) - grid.gx0, cy = Math.floor(y / grid.d) - grid.gy0;
-    let first = -1, second = -1, best = Infinity, next = Infinity;
-    for (let j = Math.max(0, cy - 2); j <= Math.min(grid.rows - 1, cy + 2); ++j) {
-      for (let i = Math.max(0, cx - 2); i <= Math.min(grid.columns - 1, cx + 2); ++i) {
-        const c = j * grid.columns + i;
-        for (let s = grid.cellStart[c]; s < grid.cellStart[c + 1]; ++s) {
-          const k = grid.cellPoints[s];
-          const dx = grid.xs[k] - x, dy = grid.ys[k] - y;
-          const squared = dx * dx + dy * dy;
-          if (squared < best) { second = first; next = best; first = k; best = squared; }
-          else if (squared < next) { second = k; next = squared; }
-        }
-      }
+  // The nearest and second nearest points to (x, y), into these (indices
+  // into the grid, distances; -1 and Infinity if none), by squared
+  // distances in doubles as the server ranks them (ties aside). The 3 x 3
+  // cells around (x, y) first; the ring around them only when the second
+  // point found is farther than the nearest edge of those 9 cells (at least
+  // d away). F2 < 2 d, so the 5 x 5 cells always suffice.
+  let nearFirst = -1, nearSecond = -1, nearF1 = Infinity, nearF2 = Infinity;
+  let best = Infinity, next = Infinity;
+  function scanCell(i, j, x, y) {
+    const g = grid;
+    if (i < 0 || j < 0 || i >= g.columns || j >= g.rows) return;
+    const c = j * g.columns + i;
+    for (let s = g.cellStart[c], end = g.cellStart[c + 1]; s < end; ++s) {
+      const k = g.cellPoints[s];
+      const dx = g.xs[k] - x, dy = g.ys[k] - y;
+      const squared = dx * dx + dy * dy;
+      if (squared < best) { nearSecond = nearFirst; next = best; nearFirst = k; best = squared; }
+      else if (squared < next) { nearSecond = k; next = squared; }
     }
-    return { first, second, f1: Math.sqrt(best), f2: Math.sqrt(next) };
+  }
+  function nearestTwo(x, y) {
+    const g = grid;
+    const fx = x / g.d, fy = y / g.d;
+    const cx = Math.floor(fx) - g.gx0, cy = Math.floor(fy) - g.gy0;
+    nearFirst = -1; nearSecond = -1; best = Infinity; next = Infinity;
+    for (let j = cy - 1; j <= cy + 1; ++j) for (let i = cx - 1; i <= cx + 1; ++i) scanCell(i, j, x, y);
+    const inner = g.d * (1 + Math.min(fx - Math.floor(fx), Math.ceil(fx) - fx, fy - Math.floor(fy), Math.ceil(fy) - fy));
+    if (!(next <= inner * inner)) {
+      for (let i = cx - 2; i <= cx + 2; ++i) { scanCell(i, cy - 2, x, y); scanCell(i, cy + 2, x, y); }
+      for (let j = cy - 1; j <= cy + 1; ++j) { scanCell(cx - 2, j, x, y); scanCell(cx + 2, j, x, y); }
+    }
+    nearF1 = Math.sqrt(best); nearF2 = Math.sqrt(next);
   }
 
-  // A colour a cell keeps wherever it is seen: a hash of its point's id.
-  function cellColour(points, k) {
-    let h = (points.idLow[k] ^ Math.imul(points.idHigh[k], 0x9e3779b1)) >>> 0;
+  function pointId(k) { return idText(grid.owners[grid.tileOf[k]], grid.index[k]); }
+
+  // A colour (0xAABBGGRR, for a little-endian Uint32Array view of RGBA
+  // bytes) a cell keeps wherever it is seen: a hash of its point's id.
+  function cellColour(k) {
+    const points = grid.owners[grid.tileOf[k]], m = grid.index[k];
+    let h = (points.idLow[m] ^ Math.imul(points.idHigh[m], 0x9e3779b1)) >>> 0;
     h = Math.imul(h ^ (h >>> 16), 0x85ebca6b) >>> 0;
     h = Math.imul(h ^ (h >>> 13), 0xc2b2ae35) >>> 0;
     h ^= h >>> 16;
-    return [128 + (h & 0x7f), 128 + ((h >>> 8) & 0x7f), 128 + ((h >>> 16) & 0x7f)];
+    return (0xff000000 | ((128 + ((h >>> 16) & 0x7f)) << 16) | ((128 + ((h >>> 8) & 0x7f)) << 8) | (128 + (h & 0x7f))) >>> 0;
+  }
+  function grey(value) {
+    const level = Math.round(255 * Math.min(1, Math.max(0, value)));
+    return (0xff000000 | (level << 16) | (level << 8) | level) >>> 0;
   }
 
+  // ---- Drawing -----------------------------------------------------------
+
+  // Dots are written as pixels into a layer of their own, drawn over the
+  // background; disks and seams are drawn over both as paths. (A canvas path
+  // of 30,000 arcs takes hundreds of milliseconds, 30,000 dots written as
+  // pixels a few.)
+  const dotsCanvas = document.createElement('canvas');
+  let frame = null;
+  let frameWords = null;
+  let drawn = { rect: [0, 0, 0, 0], shown: [], idle: false, level: 0 };
+  let renderPending = false;
+  let renderMilliseconds = 0;
+
+  function requestRender() {
+    if (renderPending) return;
+    renderPending = true;
+    requestAnimationFrame(render);
+  }
+
+  // Fills device pixels [x0, x1) x [y0, y1) of the frame with `colour`.
+  function fillPixels(x0, y0, x1, y1, colour) {
+    const width = frame.width;
+    x0 = Math.max(0, x0); y0 = Math.max(0, y0);
+    x1 = Math.min(width, x1); y1 = Math.min(frame.height, y1);
+    for (let y = y0; y < y1; ++y) frameWords.fill(colour, y * width + x0, y * width + x1);
+  }
+
+  // The background channel, one sample a block of about 20,000 blocks on
+  // screen (at least 4 CSS pixels), drawn scaled up (smoothly for F1 and
+  // F2 - F1, in flat cells for the cell id).
   const noiseCanvas = document.createElement('canvas');
-  function drawBackground(grid, width, height) {
-    const columns = Math.ceil(width / NOISE_BLOCK), rows = Math.ceil(height / NOISE_BLOCK);
-    noiseCanvas.width = columns;
-    noiseCanvas.height = rows;
+  function drawBackground(width, height) {
+    const block = Math.max(4, Math.ceil(Math.sqrt((width * height) / 20000)));
+    const columns = Math.ceil(width / block), rows = Math.ceil(height / block);
+    if (noiseCanvas.width !== columns || noiseCanvas.height !== rows) {
+      noiseCanvas.width = columns;
+      noiseCanvas.height = rows;
+    }
     const noiseContext = noiseCanvas.getContext('2d');
     const image = noiseContext.createImageData(columns, rows);
-    const pixels = image.data;
+    const words = new Uint32Array(image.data.buffer);
+    const s = scale();
     for (let r = 0; r < rows; ++r) {
+      const y = view.y - ((r + 0.5) * block - height / 2) / s;
       for (let c = 0; c < columns; ++c) {
-        const [x, y] = toWorld((c + 0.5) * NOISE_BLOCK, (r + 0.5) * NOISE_BLOCK);
-        const near = nearestTwo(grid, x, y);
-        const o = 4 * (r * columns + c);
-        let rgb = [255, 255, 255];
-        if (near.first >= 0) {
-          if (view.background === 'cell') {
-            rgb = cellColour(grid.owner[near.first], grid.index[near.first]);
-          } else {
-            const value = view.background === 'f1' ? near.f1 / grid.d : (near.f2 - near.f1) / grid.d;
-            const grey = Math.round(255 * Math.min(1, Math.max(0, value)));
-            rgb = [grey, grey, grey];
-          }
+        nearestTwo(view.x + ((c + 0.5) * block - width / 2) / s, y);
+        let colour = 0xffffffff;
+        if (nearFirst >= 0) {
+          if (view.background === 'cell') colour = cellColour(nearFirst);
+          else colour = grey(view.background === 'f1' ? nearF1 / grid.d : (nearF2 - nearF1) / grid.d);
         }
-        pixels[o] = rgb[0]; pixels[o + 1] = rgb[1]; pixels[o + 2] = rgb[2]; pixels[o + 3] = 255;
+        words[r * columns + c] = colour;
       }
     }
     noiseContext.putImageData(image, 0, 0);
     context.imageSmoothingEnabled = view.background !== 'cell';
-    context.drawImage(noiseCanvas, 0, 0, columns * NOISE_BLOCK, rows * NOISE_BLOCK);
+    context.drawImage(noiseCanvas, 0, 0, columns * block, rows * block);
   }
 
   function drawSeams(width, height) {
@@ -364,19 +422,8 @@
     context.stroke();
   }
 
-  // ---- Drawing -----------------------------------------------------------
-
-  let drawn = { rect: [0, 0, 0, 0], points: [], idle: false };
-  let lastGrid = null;
-  let renderPending = false;
-
-  function requestRender() {
-    if (renderPending) return;
-    renderPending = true;
-    requestAnimationFrame(render);
-  }
-
   function render() {
+    const start = performance.now();
     renderPending = false;
     const ratio = window.devicePixelRatio || 1;
     const { width, height } = cssSize();
@@ -384,6 +431,13 @@
       canvas.width = Math.round(width * ratio);
       canvas.height = Math.round(height * ratio);
     }
+    if (!frame || frame.width !== canvas.width || frame.height !== canvas.height) {
+      frame = context.createImageData(canvas.width, canvas.height);
+      frameWords = new Uint32Array(frame.data.buffer);
+      dotsCanvas.width = canvas.width;
+      dotsCanvas.height = canvas.height;
+    }
+    frameWords.fill(0);  // transparent
     context.setTransform(ratio, 0, 0, ratio, 0, 0);
     context.fillStyle = '#fff';
     context.fillRect(0, 0, width, height);
@@ -394,41 +448,61 @@
     const margin = 2 * d;  // F2 < 2 d: what the background needs around the screen
     const wanted = requestTiles(margin);
     const ready = wanted.filter((tile) => tile.entry.status === 'ready');
-    const grid = gridPoints(ready, margin);
-    lastGrid = grid;
-    if (view.background !== 'none') drawBackground(grid, width, height);
-    if (view.seams) drawSeams(width, height);
+    const key = view.world + ':' + ready.map((tile) => tile.key).join('|');
+    if (key !== gridKey) {
+      grid = buildGrid(ready);
+      gridKey = key;
+    }
+    if (view.background !== 'none') drawBackground(width, height);
 
+    // Points whose centres are on screen; dots written straight into the frame.
     const rect = viewRect();
     const s = scale();
+    const disks = view.draw === 'disks' && (d / 2) * s * ratio >= 2.5;
+    const dot = Math.max(2, Math.min(6, Math.round(0.24 * d * s))) * ratio;
     const shown = [];
-    const dots = new Path2D();
-    const radius = view.draw === 'disks' ? (d / 2) * s : Math.max(1.2, Math.min(3, 0.12 * d * s));
-    for (let k = 0; k < grid.xs.length; ++k) {
+    const dark = 0xff1b1b1b;
+    for (let k = 0; k < grid.n; ++k) {
       const x = grid.xs[k], y = grid.ys[k];
-      const p = grid.owner[k], index = grid.index[k];
-      // A radius field's point is drawn at its own radius, when tiles carry one.
-      const r = view.draw === 'disks' && p.rs ? (p.rs[index] / 2) * s : radius;
-      const [px, py] = toScreen(x, y);
-      if (px < -r || px > width + r || py < -r || py > height + r) continue;
-      if (x >= rect[0] && x < rect[2] && y >= rect[1] && y < rect[3]) shown.push(k);
-      dots.moveTo(px + r, py);
-      dots.arc(px, py, r, 0, 2 * Math.PI);
+      if (x < rect[0] || x >= rect[2] || y < rect[1] || y >= rect[3]) continue;
+      shown.push(k);
+      if (!disks) {
+        const px = Math.round(((x - view.x) * s + width / 2) * ratio - dot / 2);
+        const py = Math.round((height / 2 - (y - view.y) * s) * ratio - dot / 2);
+        fillPixels(px, py, px + dot, py + dot, dark);
+      }
     }
-    if (view.draw === 'disks') {
+    if (!disks) {
+      dotsCanvas.getContext('2d').putImageData(frame, 0, 0);
+      context.setTransform(1, 0, 0, 1, 0, 0);
+      context.drawImage(dotsCanvas, 0, 0);
+      context.setTransform(ratio, 0, 0, ratio, 0, 0);
+    }
+    if (disks) {
+      // Disks reach beyond the screen's edge: points just off it are drawn too.
+      const radius = (d / 2) * s;
+      const path = new Path2D();
+      for (let k = 0; k < grid.n; ++k) {
+        const points = grid.owners[grid.tileOf[k]];
+        // A radius field's point is drawn at its own radius, when tiles carry one.
+        const r = points.rs ? (points.rs[grid.index[k]] / 2) * s : radius;
+        const px = (grid.xs[k] - view.x) * s + width / 2, py = height / 2 - (grid.ys[k] - view.y) * s;
+        if (px < -r || px > width + r || py < -r || py > height + r) continue;
+        path.moveTo(px + r, py);
+        path.arc(px, py, r, 0, 2 * Math.PI);
+      }
       context.fillStyle = 'rgba(40, 90, 170, 0.35)';
-      context.fill(dots);
+      context.fill(path);
       context.strokeStyle = 'rgba(20, 50, 110, 0.9)';
       context.lineWidth = 1;
-      context.stroke(dots);
-    } else {
-      context.fillStyle = '#1b1b1b';
-      context.fill(dots);
+      context.stroke(path);
     }
+    if (view.seams) drawSeams(width, height);
 
     const pending = wanted.filter((tile) => tile.entry.status === 'queued' || tile.entry.status === 'loading');
     const failed = wanted.find((tile) => tile.entry.status === 'error');
-    drawn = { rect, grid, shown, idle: pending.length === 0, level: level() };
+    drawn = { rect, shown, idle: pending.length === 0, level: level() };
+    renderMilliseconds = performance.now() - start;
     controls.status.classList.toggle('error', Boolean(failed));
     controls.status.textContent = failed
       ? failed.entry.error
@@ -503,18 +577,17 @@
   window.addEventListener('hashchange', () => { readFragment(); syncControls(); requestRender(); });
 
   function showHover(px, py) {
-    if (!lastGrid || lastGrid.xs.length === 0) return;
+    if (!grid || grid.n === 0) return;
     const [x, y] = toWorld(px, py);
-    const near = nearestTwo(lastGrid, x, y);
+    nearestTwo(x, y);
     const s = scale();
     const reach = Math.max(8, view.draw === 'disks' ? (minDistance() / 2) * s : 8);
-    if (near.first < 0 || near.f1 * s > reach) {
+    if (nearFirst < 0 || nearF1 * s > reach) {
       controls.hover.hidden = true;
       return;
     }
-    const k = near.first;
-    const points = lastGrid.owner[k], index = lastGrid.index[k];
-    controls.hover.textContent = `id ${idText(points, index)}\nx  ${String(lastGrid.xs[k])}\ny  ${String(lastGrid.ys[k])}`;
+    const k = nearFirst;
+    controls.hover.textContent = `id ${pointId(k)}\nx  ${String(grid.xs[k])}\ny  ${String(grid.ys[k])}`;
     controls.hover.style.left = `${px + 14}px`;
     controls.hover.style.top = `${py + 14}px`;
     controls.hover.hidden = false;
@@ -542,6 +615,7 @@
     sessionStorage.setItem('scallop-token', token);
     tiles.clear();
     queue.length = 0;
+    gridKey = '';
     loadWorlds();
   });
 
@@ -566,13 +640,19 @@
   // ---- For tests and scripts: the view and the points drawn ----------------
 
   window.scallopViewer = {
-    // {world, x, y, z, level, rect: [x0, y0, x1, y1], idle}: idle once every
-    // tile the view needs is drawn.
-    state: () => ({ world: view.world, x: view.x, y: view.y, z: view.z, level: drawn.level, rect: drawn.rect, idle: drawn.idle && !renderPending }),
+    // {world, x, y, z, level, rect: [x0, y0, x1, y1], idle, renderMilliseconds}:
+    // idle once every tile the view needs is drawn; the last frame's time.
+    state: () => ({
+      world: view.world, x: view.x, y: view.y, z: view.z, level: drawn.level, rect: drawn.rect,
+      idle: drawn.idle && !renderPending, renderMilliseconds,
+    }),
     // The points drawn whose centres lie in state().rect: [{id, x, y}].
-    drawnPoints: () => drawn.shown.map((k) => ({
-      id: idText(drawn.grid.owner[k], drawn.grid.index[k]), x: drawn.grid.xs[k], y: drawn.grid.ys[k],
-    })),
+    drawnPoints: () => drawn.shown.map((k) => ({ id: pointId(k), x: grid.xs[k], y: grid.ys[k] })),
+    // What the background shows at (x, y): the nearest point's id, F1 and F2.
+    nearest: (x, y) => {
+      nearestTwo(x, y);
+      return nearFirst < 0 ? null : { id: pointId(nearFirst), f1: nearF1, f2: nearF2 };
+    },
     setView: (fields) => { Object.assign(view, fields); clampView(); syncControls(); requestRender(); },
     panBy, zoomAt,
   };

@@ -162,6 +162,33 @@ TEST(E2eCostBoundsTest, ExpiredColdRectanglesStopGenerating) {
   EXPECT_FALSE(AnsweredInLog(log, "Verify")) << log;
 }
 
+// A warm Verify has nothing left to generate: its time is the Delaunay check
+// (about 2 s for 1500 d x 1500 d, 1.9M points, against a 600 ms deadline),
+// which now polls the deadline too. The old server checked to the end and
+// logged code=OK.
+TEST(E2eCostBoundsTest, AnExpiredWarmVerifyStopsInTheVerifier) {
+  auto server = ScallopdProcess::Start(
+      {"--threads", "1", "--max-query-area", "2.3e6", "--max-verify-area", "2.3e6"});
+  ASSERT_NE(server, nullptr);
+  client::ScallopClient client = server->Client();
+  v1::GetPointsRequest warm;
+  *warm.mutable_world() = WorldToMessage(ValidWorld({.seed = 23}));
+  *warm.mutable_rect() = RectToMessage({0, 0, 1500, 1500});
+  warm.set_page_size(1);
+  v1::GetPointsResponse points;
+  const grpc::Status warmed = client.GetPoints(warm, points, {.timeout = seconds(120)});
+  ASSERT_TRUE(warmed.ok()) << client::DescribeStatus(warmed);
+  v1::VerifyRequest verify;
+  *verify.mutable_world() = WorldToMessage(ValidWorld({.seed = 23}));
+  *verify.mutable_rect() = RectToMessage({2, 2, 1498, 1498});
+  v1::VerifyResponse report;
+  EXPECT_EQ(client.Verify(verify, report, {.timeout = milliseconds(600)}).error_code(),
+            grpc::StatusCode::DEADLINE_EXCEEDED);
+  const std::string log = server->WaitForLog("] Verify ", seconds(60));
+  EXPECT_FALSE(AnsweredInLog(log, "Verify")) << log;
+  EXPECT_NE(log.find("verify: stopped before the end"), std::string::npos) << log;
+}
+
 TEST(E2eCostBoundsTest, SigtermDuringABigCallExitsWithinTheGrace) {
   auto server = ScallopdProcess::Start(
       {"--threads", "1", "--grace-seconds", "1", "--metrics-listen", "127.0.0.1:0"});

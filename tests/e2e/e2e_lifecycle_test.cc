@@ -41,14 +41,13 @@ TEST(E2eLifecycleTest, DeadlineStopsAStreamMidway) {
   ASSERT_NE(server, nullptr);
   client::ScallopClient client = server->Client();
   int chunks = 0;
-  const auto start = std::chrono::steady_clock::now();
+  // The deadline, not the end of the rectangle, ends the stream: kHugeRect
+  // takes tens of seconds to stream, and the server logs the call cancelled.
   const grpc::Status status = client.StreamPoints(
       StreamRequest(kHugeRect), [&](const v1::PointsChunk&) { return ++chunks > 0; },
       {.timeout = milliseconds(500)});
-  const auto elapsed = std::chrono::steady_clock::now() - start;
   EXPECT_EQ(status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
   EXPECT_GT(chunks, 0);
-  EXPECT_LT(elapsed, milliseconds(3000));
   ExpectStillServing(client);
   // The server noticed, stopped the stream and logged it.
   std::string log;
@@ -81,11 +80,12 @@ TEST(E2eLifecycleTest, CancellationStopsAStreamMidway) {
 }
 
 TEST(E2eLifecycleTest, SigtermGoesNotServingAndFinishesInFlightCallsThenExitsZero) {
-  auto server = ScallopdProcess::Start({"--drain-seconds", "0.3", "--grace-seconds", "30"});
+  auto server = ScallopdProcess::Start({"--drain-seconds", "1", "--grace-seconds", "60"});
   ASSERT_NE(server, nullptr);
   client::ScallopClient client = server->Client();
-  // 2,500 regions, about 550k points: over a second of work, so the stream is
-  // still being generated when the 0.3 s drain ends and Shutdown begins.
+  // 2,500 regions, about 550k points in some 2,500 chunks, read at most one
+  // a millisecond: the stream outlasts the 1 s drain however fast the machine,
+  // so it is still in flight when Shutdown begins.
   const Rect rect{-400, -400, 400, 400};
   PlanePoints streamed;
   std::atomic<int> chunks{0};
@@ -93,14 +93,16 @@ TEST(E2eLifecycleTest, SigtermGoesNotServingAndFinishesInFlightCallsThenExitsZer
   std::thread reader([&] {
     stream_status = client.StreamPoints(StreamRequest(rect), [&](const v1::PointsChunk& chunk) {
       ++chunks;
+      std::this_thread::sleep_for(milliseconds(1));
       return ReadPoints(chunk.points(), streamed).ok();
     });
   });
   while (chunks < 3) std::this_thread::sleep_for(milliseconds(1));
   server->Signal(SIGTERM);
-  // During the drain the health check answers NOT_SERVING.
+  // From the signal on, the health check answers NOT_SERVING: through the
+  // drain and while the stream finishes.
   bool saw_not_serving = false;
-  for (int attempt = 0; attempt < 50 && !saw_not_serving; ++attempt) {
+  for (int attempt = 0; attempt < 200 && !saw_not_serving; ++attempt) {
     grpc::ClientContext context;
     grpc::health::v1::HealthCheckResponse health;
     const grpc::Status status =
@@ -162,14 +164,15 @@ TEST(E2eLifecycleTest, CallsOutlivingTheGracePeriodAreCutAndTheServerStillExitsZ
   std::thread reader([&] {
     stream_status = client.StreamPoints(StreamRequest(kHugeRect), [&](const v1::PointsChunk&) {
       ++chunks;
+      std::this_thread::sleep_for(milliseconds(5));
       return true;
     });
   });
   while (chunks < 3) std::this_thread::sleep_for(milliseconds(5));
-  const auto start = std::chrono::steady_clock::now();
   server->Signal(SIGTERM);
+  // The stream has minutes left (62,500 chunks read at most one each 5 ms),
+  // so an exit within 15 s means the grace period cut it.
   EXPECT_EQ(server->WaitForExit(milliseconds(15000)), 0);
-  EXPECT_LT(std::chrono::steady_clock::now() - start, milliseconds(5000));
   reader.join();
   EXPECT_FALSE(stream_status.ok());
 }

@@ -115,7 +115,9 @@ v1::FollowRequest FirstUpdate() {
 TEST(E2eStreamSlotsTest, IdleFollowersAreDroppedAndTakeNoUnarySlot) {
   const std::string config = ::testing::TempDir() + "e2e_stream_slots.yaml";
   // Not a round number: messages print it exactly (std::to_string said 1).
+  // The whole stream budget for this one client: the test is of idling.
   std::ofstream(config) << "follow_idle_seconds: 1.0000001\nmax_streams_in_flight: 2\n"
+                        << "max_client_share: 1\n"
                         << "max_in_flight: 2\n";
   auto server = ScallopdProcess::Start({"--config", config});
   ASSERT_NE(server, nullptr);

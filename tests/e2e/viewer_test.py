@@ -9,6 +9,7 @@ Usage: viewer_test.py SCALLOPD SCREENSHOT_PATH
 """
 import json
 import math
+import random
 import os
 import subprocess
 import sys
@@ -92,6 +93,23 @@ def check_drawn(driver, http, d, what):
     return state
 
 
+def check_background(driver, http, d, state):
+    rect = state["rect"]
+    around = tile_points(http, state["world"], d, state["level"],
+                         [rect[0] - 2 * d, rect[1] - 2 * d, rect[2] + 2 * d, rect[3] + 2 * d])
+    rng = random.Random(21)
+    for _ in range(200):
+        x = rng.uniform(rect[0], rect[2])
+        y = rng.uniform(rect[1], rect[3])
+        ranked = sorted(((px - x) * (px - x) + (py - y) * (py - y), int(i))
+                        for i, (px, py) in around.items())
+        page = driver.execute_script("return window.scallopViewer.nearest(arguments[0], arguments[1])", x, y)
+        expected = (str(ranked[0][1]), math.sqrt(ranked[0][0]), math.sqrt(ranked[1][0]))
+        if (page["id"], page["f1"], page["f2"]) != expected:
+            fail(f"background at ({x!r}, {y!r}): page {page}, brute force {expected}")
+    print("background: F1, F2 and cell id equal brute force at 200 places")
+
+
 def main():
     scallopd, screenshot = sys.argv[1], sys.argv[2]
     log = tempfile.TemporaryFile(mode="w+")
@@ -133,6 +151,10 @@ def main():
         fine = check_drawn(driver, http, 0.25, "world 'fine' with disks and cells")
         if fine["world"] != "fine":
             fail(f"the world did not change: {fine}")
+
+        # The background's F1, F2 and cell id at random places in view, against
+        # a brute-force search of the JSON tiles' points around the view.
+        check_background(driver, http, 0.25, fine)
 
         # Hover over a drawn point: its id and exact coordinates appear.
         points = driver.execute_script("return window.scallopViewer.drawnPoints()")

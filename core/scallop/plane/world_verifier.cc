@@ -14,7 +14,8 @@ double MaximalityTolerance(double min_distance, double max_abs) {
 }
 
 StatusOr<VerifyReport> VerifyWorldRect(PlaneEngine& engine, const World& world, const Rect& rect,
-                                       const QueryLimit& limit, PlanePoints* inside) {
+                                       const QueryLimit& limit, PlanePoints* inside,
+                                       std::function<bool()> stop) {
   if (Status status = CheckRectBounds(world, rect, "rect"); !status.ok()) return status;
   const Rect grown = Grown(rect, 2 * world.min_distance());
   // Named "rect+halo" in messages: the rectangle verify reads.
@@ -33,6 +34,7 @@ StatusOr<VerifyReport> VerifyWorldRect(PlaneEngine& engine, const World& world, 
   const double max_abs =
       std::max({std::abs(grown.x0), std::abs(grown.x1), std::abs(grown.y0), std::abs(grown.y1)});
   options.max_tolerance = MaximalityTolerance(world.min_distance(), max_abs);
+  options.stop = std::move(stop);
   return VerifyWindow(points->positions, rect, world.min_distance(), options);
 }
 

@@ -3,6 +3,8 @@
 // seams counted apart. What `scallop verify` and the Verify RPC run.
 #pragma once
 
+#include <functional>
+
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/query_rect.h"
 #include "scallop/verify/delaunay_verifier.h"
@@ -22,8 +24,11 @@ double MaximalityTolerance(double min_distance, double max_abs);
 // REQUIRES: the engine's max_query_area >= limit.max_area.
 // With `inside`, also the world's points in `rect`, in query order, for
 // callers that go on to measure them (scallop analyze).
+// With `stop`, the verifier polls it and returns CANCELLED once it says so
+// (its caller has gone); the query before it is for the caller to stop.
 // Cost: one query of the grown rectangle plus O(N log N) for the verifier.
 StatusOr<VerifyReport> VerifyWorldRect(PlaneEngine& engine, const World& world, const Rect& rect,
-                                       const QueryLimit& limit, PlanePoints* inside = nullptr);
+                                       const QueryLimit& limit, PlanePoints* inside = nullptr,
+                                       std::function<bool()> stop = nullptr);
 
 }  // namespace scallop

@@ -83,7 +83,9 @@ class Scan {
     slack_ = 1e-6 * d;
   }
 
-  void Run() {
+  // Runs the scan; false when options.stop stopped it (the report is then
+  // incomplete and must not be used).
+  bool Run() {
     using IndexedPoint = std::pair<CgalPoint, uint32_t>;
     std::vector<IndexedPoint> input;
     input.reserve(lifted_.size());
@@ -100,6 +102,7 @@ class Scan {
     CGAL::spatial_sort(input.begin(), input.end(), SortTraits());
     Delaunay::Vertex_handle previous;
     for (const IndexedPoint& point : input) {
+      if (ShouldStop()) return false;
       // A repeated position returns the existing vertex; its index is then one
       // of the coincident points, which JudgeCoincidentPoints handles.
       previous =
@@ -112,8 +115,9 @@ class Scan {
     // One pass over the faces (circumcentres), one over the edges (spacing and
     // Voronoi edges crossing the area's boundary): each is a few tenths of a
     // second per million points, so the scan costs less than the insertion.
-    ScanFaces();
+    if (!ScanFaces()) return false;
     for (auto e = dt_.finite_edges_begin(); e != dt_.finite_edges_end(); ++e) {
+      if (ShouldStop()) return false;
       const Delaunay::Face_handle f = e->first;
       const int i = e->second;
       JudgePair(lifted_[f->vertex(Delaunay::cw(i))->info()],
@@ -135,9 +139,16 @@ class Scan {
     report_.largest_empty_centre = best_centre_;
     report_.maximal_ok = report_.largest_empty_circle <
                          judging_.min_distance * (1.0 + judging_.options.max_tolerance);
+    return true;
   }
 
  private:
+  // True once options.stop asks to stop, polled every 16,384 calls: a poll
+  // (an atomic read behind a std::function) then costs nothing measurable.
+  bool ShouldStop() {
+    return judging_.options.stop && (++steps_ & 0x3FFF) == 0 && judging_.options.stop();
+  }
+
   // Judges the input pair behind an edge once, in the contract's expression.
   void JudgePair(LiftedPoint a, LiftedPoint b) {
     const std::span<const Vec2> points = judging_.points;
@@ -230,8 +241,9 @@ class Scan {
   // F1's maximum over the closed area is at a Voronoi vertex (a circumcentre)
   // inside it, where a Voronoi edge crosses its boundary (CrossVoronoiEdge),
   // or at a corner. Also keeps every face's circumcentre for the edges.
-  void ScanFaces() {
-    if (dt_.number_of_vertices() == 0) return;
+  // False when stopped.
+  bool ScanFaces() {
+    if (dt_.number_of_vertices() == 0) return true;
     const Rect& area = judging_.area;
     const Delaunay::Face_handle no_hint;
     for (const Vec2 corner : {Vec2{area.x0, area.y0}, Vec2{area.x1, area.y0},
@@ -240,6 +252,7 @@ class Scan {
     }
     centres_.reserve(dt_.number_of_faces());
     for (auto f = dt_.finite_faces_begin(); f != dt_.finite_faces_end(); ++f) {
+      if (ShouldStop()) return false;
       f->info() = static_cast<uint32_t>(centres_.size());
       const CgalPoint c = dt_.circumcenter(f);
       const Vec2 centre{c.x(), c.y()};
@@ -253,6 +266,7 @@ class Scan {
         Consider(NearestDistance(inside, f), inside);
       }
     }
+    return true;
   }
 
   // Measures F1 where the Voronoi edge dual to edge (f, i) crosses the boundary.
@@ -337,7 +351,10 @@ class Scan {
   double best_radius_ = -1.0;
   Vec2 best_centre_;
   std::vector<Vec2> centres_;  // per finite face, indexed by its info()
+  uint64_t steps_ = 0;         // ShouldStop's calls
 };
+
+Status Stopped() { return Cancelled("verify: stopped before the end (its caller has gone)"); }
 
 bool IsFinite(double v) { return std::isfinite(v); }
 
@@ -419,7 +436,7 @@ StatusOr<VerifyReport> VerifyDomain(std::span<const Vec2> points, const Domain& 
   VerifyReport report;
   if (!domain.torus) {
     const std::vector<LiftedPoint> lifted = Unshifted(points);
-    Scan(judging, lifted, report).Run();
+    if (!Scan(judging, lifted, report).Run()) return Stopped();
   } else {
     // F1 of the replicated set equals the torus's F1 wherever it is below the
     // band (a missing image is farther than the band), so a radius below the
@@ -429,7 +446,7 @@ StatusOr<VerifyReport> VerifyDomain(std::span<const Vec2> points, const Domain& 
       band = std::min(band, every_image);
       report = VerifyReport{};
       const std::vector<LiftedPoint> lifted = LiftToTorus(points, domain.rect, band);
-      Scan(judging, lifted, report).Run();
+      if (!Scan(judging, lifted, report).Run()) return Stopped();
       if (report.largest_empty_circle < band || band >= every_image) break;
     }
   }
@@ -446,7 +463,7 @@ StatusOr<VerifyReport> VerifyWindow(std::span<const Vec2> points, const Rect& wi
   const Judging judging{points, window, PairRule::kTouchesWindow, 0.0, 0.0, min_distance, options};
   VerifyReport report;
   const std::vector<LiftedPoint> lifted = Unshifted(points);
-  Scan(judging, lifted, report).Run();
+  if (!Scan(judging, lifted, report).Run()) return Stopped();
   for (const Vec2& p : points) report.points_checked += window.Contains(p);
   return report;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <span>
 
@@ -27,6 +28,9 @@ struct VerifyOptions {
   // multiples (region of p = (floor(p.x / S), floor(p.y / S))) and the report
   // also counts the judged pairs whose endpoints lie in different regions.
   double seam_spacing = 0.0;
+  // When set, polled every 16,384 insertions and scan steps: once it returns
+  // true the verifier stops and returns CANCELLED (its caller has gone).
+  std::function<bool()> stop;
 };
 
 // What the verifier found. Pairs are Delaunay edges: the closest pair of any
@@ -73,7 +77,8 @@ struct VerifyReport {
 // The pair's squared distance is the smaller of p - (q + shift) and
 // q - (p - shift), the expression a sampler evaluates for either order.
 // Rejects (INVALID_ARGUMENT): non-finite or empty rectangle, d <= 0 or
-// non-finite, non-finite points, negative or non-finite options.
+// non-finite, non-finite points, negative or non-finite options. CANCELLED
+// when options.stop asked it to stop.
 // Cost: O(N log N) (a Hilbert sort, then O(1) expected per insertion): 1.0 to
 // 1.4 s of one core per million points at -O3 (shared 2-core machine; test
 // DelaunayVerifierTest.MillionPoints), three quarters of it the triangulation;

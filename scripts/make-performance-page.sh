@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# Regenerates docs/performance.md from one run of every benchmark: builds the
+# benchmarks (Release) into BUILD_DIR, runs them one after another, keeps
+# their outputs in RESULTS_DIR and renders the page from them alone
+# (scripts/performance/render_page.py), so every figure on the page has its
+# baseline from the same run, the command that made it and the CPU beside it.
+#
+#   scripts/make-performance-page.sh [BUILD_DIR]    # default build-bench; about 15 minutes
+#
+# Environment:
+#   QUICK=1        tiny sizes and times: checks that the pipeline works (CI), figures meaningless
+#   OUTPUT=FILE    where the page goes (default docs/performance.md)
+#   RESULTS=DIR    keep the raw outputs there (default: a temporary folder, removed)
+#   REPETITIONS=N  Google Benchmark repetitions, medians reported (default 3)
+#   SKIP_BUILD=1   use BUILD_DIR as it is
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=${1:-build-bench}
+output=${OUTPUT:-docs/performance.md}
+quick=${QUICK:-0}
+repetitions=${REPETITIONS:-3}
+((quick)) && repetitions=1
+if [[ -n ${RESULTS:-} ]]; then
+  results=$RESULTS
+  mkdir -p "$results"
+else
+  results=$(mktemp -d /tmp/scallop-performance-XXXXXX)
+  trap 'rm -rf "$results"' EXIT
+fi
+
+targets=(samplers_bench field_bench plane_bench nearest_bench deterministic_math_bench
+  follow_bench cold_tile_latency load_generator null_server scallopd delaunay_verifier_test)
+if [[ ${SKIP_BUILD:-0} != 1 ]]; then
+  cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$build" -j2 --target "${targets[@]}"
+fi
+
+load_average() { cut -d' ' -f1-3 /proc/loadavg | sed 's/ /, /g'; }
+load_before=$(load_average)
+declare -A commands
+
+# bench NAME [ARGS...]: runs a Google Benchmark program into NAME.json.
+bench() {
+  local name=$1
+  shift
+  local args=(--benchmark_repetitions="$repetitions" --benchmark_report_aggregates_only=true "$@")
+  commands[$name]="$build/bench/$name ${args[*]}"
+  echo "== $name" >&2
+  "$build/bench/$name" "${args[@]}" --benchmark_out="$results/$name.json" \
+    --benchmark_out_format=json >"$results/$name.console"
+}
+
+if ((quick)); then
+  bench samplers_bench --benchmark_filter='/1000/' --benchmark_min_time=0.01
+  bench field_bench --benchmark_filter=smoke --benchmark_min_time=0.01
+  bench plane_bench --benchmark_min_time=0.01
+  bench nearest_bench --benchmark_min_time=0.01
+  bench deterministic_math_bench --benchmark_filter='Atan2' --benchmark_min_time=0.01
+  FOLLOW_BENCH_WALK_D=64 bench follow_bench
+  tiles=10
+  load_env=(DURATION=1 REQUESTS=50 STREAMS=1 REPEATS=1)
+else
+  bench samplers_bench
+  bench field_bench --benchmark_filter=1M
+  bench plane_bench
+  bench nearest_bench
+  bench deterministic_math_bench
+  bench follow_bench
+  tiles=400
+  load_env=(DURATION=10 STREAMS="1 4" REPEATS=3)
+fi
+
+echo "== cold_tile_latency" >&2
+commands[cold_tile_latency]="$build/bench/cold_tile_latency $tiles 64"
+"$build/bench/cold_tile_latency" "$tiles" 64 >"$results/cold_tile_latency.txt"
+
+echo "== verifier" >&2
+commands[verifier]="$build/tests/delaunay_verifier_test --gtest_filter=*MillionPoints*"
+"$build/tests/delaunay_verifier_test" --gtest_filter='*MillionPoints*' >"$results/verifier.txt"
+
+echo "== load" >&2
+commands[load]="${load_env[*]} bench/run-load-benchmark.sh $build"
+env "${load_env[@]}" bench/run-load-benchmark.sh "$build" >"$results/load.txt"
+
+# What the page says about the run: the machine, the code, the commands.
+commands_json=$(for name in "${!commands[@]}"; do printf '%s\0%s\0' "$name" "${commands[$name]}"; done |
+  python3 -c 'import json, sys
+parts = sys.stdin.read().split("\0")[:-1]
+print(json.dumps(dict(zip(parts[::2], parts[1::2]))))')
+python3 - "$results/run.json" <<EOF
+import json, sys
+json.dump({
+    "commit": "$(git rev-parse --short HEAD)$(git diff --quiet HEAD -- core server client bench || echo ' with local changes')",
+    "date": "$(date -u '+%Y-%m-%d %H:%M UTC')",
+    "cpu": "$(lscpu | sed -n 's/^Model name: *//p' | head -1)",
+    "cores": "$(nproc)",
+    "load_before": "$load_before",
+    "load_after": "$(load_average)",
+    "repetitions": $repetitions,
+    "commands": $commands_json,
+}, open(sys.argv[1], "w"), indent=1)
+EOF
+
+python3 scripts/performance/render_page.py "$results" >"$output"
+echo "make-performance-page: wrote $output" >&2

@@ -1,0 +1,282 @@
+#!/usr/bin/env python3
+"""Renders docs/performance.md from one run of scripts/make-performance-page.sh.
+
+    render_page.py RESULTS_DIR > docs/performance.md
+
+Exits 1, naming them on stderr, when some sections had no input (the page is written anyway).
+
+RESULTS_DIR holds what the run wrote: the Google Benchmark JSON files
+(<bench>.json), the text outputs of cold_tile_latency, the verifier test and
+the load benchmark, and run.json (machine, commit, commands, load averages).
+Every figure on the page comes from those files; an input that is missing
+renders as "not measured in this run", never as an old figure.
+"""
+import json
+import pathlib
+import re
+import sys
+
+RESULTS = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ".")
+
+
+def load_json(name):
+    path = RESULTS / name
+    return json.loads(path.read_text()) if path.exists() else None
+
+
+def read_text(name):
+    path = RESULTS / name
+    return path.read_text() if path.exists() else None
+
+
+def medians(bench_json):
+    """name -> the median aggregate's row (or the single run's row)."""
+    rows = {}
+    if not bench_json:
+        return rows
+    for row in bench_json["benchmarks"]:
+        name = row["run_name"]
+        if row.get("run_type") == "aggregate":
+            if row.get("aggregate_name") == "median":
+                rows[name] = row
+        else:
+            rows.setdefault(name, row)
+    return rows
+
+
+def si(value, unit=""):
+    """4,010,000 -> '4.01M'."""
+    for factor, suffix in ((1e9, "G"), (1e6, "M"), (1e3, "k")):
+        if abs(value) >= factor:
+            return f"{value / factor:.3g}{suffix}{unit}"
+    return f"{value:.3g}{unit}"
+
+
+def ratio(value, baseline):
+    return f"{value / baseline:.2f}x" if baseline else "-"
+
+
+MISSING = "_Not measured in this run._\n"
+
+
+def command_block(run, key):
+    command = run.get("commands", {}).get(key)
+    return f"    {command}\n" if command else ""
+
+
+def bounded_samplers(run):
+    rows = medians(load_json("samplers_bench.json"))
+    if not rows:
+        return MISSING
+    sizes = (1000, 10000, 100000, 1000000)
+    methods = (("bridson_baseline", "Bridson, k = 30 (baseline)"),
+               ("a3", "**A3**, boundary sampling"),
+               ("a2", "**A2**, O(N) dart throwing"),
+               ("a1", "**A1**, dart throwing with cells"),
+               ("dart", "dart throwing, 1000 misses (not maximal)"),
+               ("best_candidate", "Mitchell's best candidate (k = 1)"))
+
+    def row_for(method, n):
+        return rows.get(f"BM_Sampler/{method}/{n}/min_time:0.500")
+
+    out = [command_block(run, "samplers_bench"), "\n",
+           "Points per second on a square expected to hold N points at d = 1, with the ratio\n"
+           "to our Bridson at the same N in the same run; heap bytes per point at the largest N\n"
+           "measured.\n\n",
+           "| method | N ≈ 1k | N ≈ 10k | N ≈ 100k | N ≈ 1M | peak heap bytes / point |\n",
+           "|---|---|---|---|---|---|\n"]
+    for method, label in methods:
+        cells, last = [], None
+        for n in sizes:
+            row, base = row_for(method, n), row_for("bridson_baseline", n)
+            if row is None:
+                cells.append("–")
+                continue
+            last = row
+            pps = row["points_per_second"]
+            cells.append(si(pps) if method == "bridson_baseline" or base is None else
+                         f"{si(pps)} ({ratio(pps, base['points_per_second'])})")
+        bytes_cell = f"{last['peak_bytes_per_point']:.0f}" if last else "–"
+        out.append(f"| {label} | {' | '.join(cells)} | {bytes_cell} |\n")
+    return "".join(out)
+
+
+def radius_fields(run):
+    rows = medians(load_json("field_bench.json"))
+    size = "1M/1000000" if "uniform_a3_1M/1000000" in rows else "smoke/10000"
+    uniform, field, bridson = (rows.get(f"{name}_{size}")
+                               for name in ("uniform_a3", "field_noise8", "field_bridson"))
+    if not (uniform and field and bridson):
+        return MISSING
+    u, f, b = (r["points_per_second"] for r in (uniform, field, bridson))
+    return "".join([
+        command_block(run, "field_bench"), "\n",
+        f"About {'1M' if size.startswith('1M') else '10k'} points on a square; the field is noise"
+        " with r_max / r_min = 8\n"
+        "(`bench/field_bench.cc`). Targets (issue 24): at least 0.5x uniform A3, at least\n"
+        "5x the field Bridson.\n\n",
+        "| sampler | points/s | against uniform A3 | against field Bridson |\n",
+        "|---|---|---|---|\n",
+        f"| uniform A3 (baseline) | {si(u)} | 1 | {ratio(u, b)} |\n",
+        f"| **SampleField**, noise field | {si(f)} | **{ratio(f, u)}** | **{ratio(f, b)}** |\n",
+        f"| field Bridson, k = 30 (not maximal) | {si(b)} | {ratio(b, u)} | 1 |\n"])
+
+
+def infinite_plane(run):
+    rows = medians(load_json("plane_bench.json"))
+    bounded = rows.get("BM_BoundedA3/real_time")
+    if not bounded:
+        return MISSING
+    base = bounded["points_per_second"]
+    out = [command_block(run, "plane_bench"), "\n",
+           "A 1000 d square of an A3 world (about 855k points), generated cold by the plane\n"
+           "engine, against bounded A3 on the same square in the same run. Target (issue 23):\n"
+           "cold, 1 thread, at least 0.85x bounded A3.\n\n",
+           "| measure | points/s | ratio | cache bytes / point |\n", "|---|---|---|---|\n",
+           f"| bounded A3, same square (baseline) | {si(base)} | 1 | |\n"]
+    for name, label in (("BM_PlaneCold/1/real_time", "plane, cold, 1 thread"),
+                        ("BM_PlaneCold/2/real_time", "plane, cold, 2 threads"),
+                        ("BM_PlaneWarm/real_time", "plane, warm, copied out")):
+        row = rows.get(name)
+        if row:
+            cache = row.get("cache_bytes_per_point")
+            out.append(f"| {label} | {si(row['points_per_second'])} | "
+                       f"**{ratio(row['points_per_second'], base)}** | "
+                       f"{f'{cache:.1f}' if cache else ''} |\n")
+    return "".join(out)
+
+
+def text_section(run, key, description, keep=lambda line: bool(line.strip())):
+    """A section that quotes the lines `keep` selects from KEY.txt, indented."""
+    text = read_text(f"{key}.txt")
+    lines = [line.strip() for line in (text or "").splitlines() if keep(line)]
+    if not lines:
+        return MISSING
+    return "".join([command_block(run, key), "\n", description, "\n"] +
+                   [f"    {line}\n" for line in lines])
+
+
+def cold_tiles(run):
+    return text_section(run, "cold_tile_latency",
+                        "Thread CPU time of the engine alone for cold 64 d tiles at random places:\n")
+
+
+def nearest(run):
+    rows = medians(load_json("nearest_bench.json"))
+    if not rows:
+        return MISSING
+    out = [command_block(run, "nearest_bench"), "\n",
+           "65,536 positions a call in a warm 256 d square of an A3 world, against a\n"
+           "jittered-grid cellular noise (the usual shader baseline) on the same positions.\n"
+           "Target (issue 23): at least 1.6x the baseline and 30M lookups/s.\n\n",
+           "| order | jittered grid (baseline) | `NearestLookup::Nearest` | ratio |\n",
+           "|---|---|---|---|\n"]
+    for order, label in ((0, "random positions"), (1, "image order")):
+        base = rows.get(f"BM_JitteredGridBaseline/image_order:{order}")
+        ours = rows.get(f"BM_NearestWarm/image_order:{order}")
+        if base and ours:
+            b, o = base["lookups_per_second"], ours["lookups_per_second"]
+            out.append(f"| {label} | {si(b, '/s')} | **{si(o, '/s')}** | **{ratio(o, b)}** |\n")
+    grid = rows.get("BM_NoiseGridWarm")
+    if grid and "lookups_per_second" in grid:
+        out.append(f"\nA 256 x 256 noise image (`NoiseGrid`): {si(grid['lookups_per_second'], '/s')}"
+                   " lookups.\n")
+    return "".join(out)
+
+
+def deterministic_math(run):
+    rows = medians(load_json("deterministic_math_bench.json"))
+    if not rows:
+        return MISSING
+    out = [command_block(run, "deterministic_math_bench"), "\n",
+           "Our bit-reproducible functions (`base/deterministic_math.h`) against glibc's,\n"
+           "nanoseconds a call (lower is better).\n\n",
+           "| function | measure | ours | glibc | ours / glibc |\n", "|---|---|---|---|---|\n"]
+    for name, row in rows.items():
+        match = re.fullmatch(r"BM_(\w+?)_(Throughput|Latency)_Ours", name)
+        if not match:
+            continue
+        theirs = rows.get(name.replace("_Ours", "_Glibc"))
+        if theirs:
+            o, g = (1e9 / r["items_per_second"] for r in (row, theirs))
+            out.append(f"| {match.group(1)} | {match.group(2).lower()} | {o:.2f} | {g:.2f} | "
+                       f"{o / g:.2f} |\n")
+    return "".join(out)
+
+
+def verifier(run):
+    return text_section(run, "verifier", "About a million spaced points through the CGAL verifier:\n",
+                        keep=lambda line: " points in " in line)
+
+
+def follow(run):
+    rows = medians(load_json("follow_bench.json"))
+    row = next(iter(rows.values()), None)
+    if not row:
+        return MISSING
+    out = [command_block(run, "follow_bench"), "\n",
+           "A player walks 10,000 d at 2,000 d/s with a 64 d view (an update every 2 ms)\n"
+           "against a real scallopd on loopback: Follow with prefetch, without, and the\n"
+           "baseline, the whole view by GetPoints every step.\n\n",
+           "| walk | bytes / step | p50 ms | p90 ms | p99 ms |\n", "|---|---|---|---|---|\n"]
+    for prefix, label in (("prefetch", "Follow, prefetch"), ("no_prefetch", "Follow, no prefetch"),
+                          ("naive", "GetPoints each step (baseline)")):
+        if f"{prefix}_p99_ms" in row:
+            out.append(f"| {label} | {row[prefix + '_bytes_per_step']:.0f} | "
+                       f"{row[prefix + '_p50_ms']:.2f} | {row[prefix + '_p90_ms']:.2f} | "
+                       f"{row[prefix + '_p99_ms']:.2f} |\n")
+    out.append(f"\nGetPoints sends {row['naive_over_follow_bytes']:.1f}x the bytes of Follow; "
+               f"its p99 is {row['naive_over_prefetch_p99']:.2f}x Follow's with prefetch.\n")
+    return "".join(out)
+
+
+def service_load(run):
+    return text_section(
+        run, "load",
+        "scallopd (`--threads 2 --cache-megabytes 64`) and `null_server` (real responses\n"
+        "serialized once: the transport's limit) side by side on loopback, driven by\n"
+        "`load_generator` with 64 d tiles of A3 worlds: warm (inside a 256 d square\n"
+        "queried once before) and cold (a fresh world, tiles 1024 d apart). Targets\n"
+        "(issue 23): warm at least 0.85x the null server in every run; cold p99 for one\n"
+        "stream at most 5 ms.\n",
+        keep=lambda line: bool(line.strip()) and not line.startswith("#"))
+
+
+def main():
+    run = load_json("run.json") or {}
+    sections = (("Bounded samplers", bounded_samplers), ("Radius fields, bounded", radius_fields),
+                ("Infinite plane", infinite_plane), ("Cold tiles", cold_tiles),
+                ("Nearest lookups", nearest), ("Deterministic math", deterministic_math),
+                ("Verifier", verifier), ("Follow: a walking player", follow),
+                ("Service under load", service_load))
+    head = f"""# Performance
+
+<!-- Generated by scripts/make-performance-page.sh from one run; edit the renderer
+     (scripts/performance/render_page.py), not this page. -->
+
+The current figures, all from one run of `scripts/make-performance-page.sh`:
+commit {run.get('commit', '?')}, {run.get('date', '?')}, on {run.get('cpu', '?')}
+({run.get('cores', '?')} cores, shared with other work; load average
+{run.get('load_before', '?')} before the run and {run.get('load_after', '?')} after). Absolute
+figures move with the machine and its load: each is given beside a baseline measured in the
+same run, and the ratio is what we track. The same benchmark measures 20M nearest lookups a
+second on an Intel Xeon and 8M on an AMD EPYC, so name the CPU with any figure you quote.
+
+Release build (`-O3 -DNDEBUG -ffp-contract=off`), Google Benchmark medians of
+{run.get('repetitions', '?')} repetitions where it repeats. To regenerate this page:
+
+    scripts/make-performance-page.sh            # builds into build-bench, runs, rewrites this page
+
+How each figure got where it is (what was tried, what paid and what did not) is in the
+history of this page and the commit messages: `git log -p docs/performance.md`.
+"""
+    rendered = [(title, render(run)) for title, render in sections]
+    sys.stdout.write(head + "".join(f"\n## {title}\n\n{text}" for title, text in rendered))
+    missing = [title for title, text in rendered if text == MISSING]
+    if missing:
+        sys.stderr.write(f"render_page: not measured: {', '.join(missing)}\n")
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()

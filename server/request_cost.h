@@ -1,0 +1,31 @@
+// What a call may cost, in the units of AdmissionBudget: the regions it may
+// touch, an upper bound on its work (a cold region is generated once, a warm
+// one copied). Computed before admission from the request alone, in O(1)
+// (Nearest: one pass over its positions); a request the call will refuse as
+// invalid costs 1, since its refusal costs nothing.
+#pragma once
+
+#include <cstdint>
+
+#include "scallop/geometry/rect.h"
+#include "scallop/plane/world.h"
+#include "scallop/v1/scallop.pb.h"
+#include "server/world_registry.h"
+
+namespace scallop::server {
+
+// Regions `rect` overlaps in `world`; 1 when the rectangle is out of bounds.
+int64_t RegionsCost(const World& world, const Rect& rect);
+
+// GetPoints: its rectangle. Verify: the rectangle and its 2 d halo.
+// NoiseGrid and Nearest: the regions of the box around their samples or
+// positions, or their number, or `max_regions` (max_nearest_regions: a call
+// whose points lie in more regions is refused before any work), the least.
+int64_t RequestCost(const WorldRegistry& worlds, const v1::GetPointsRequest& request);
+int64_t RequestCost(const WorldRegistry& worlds, const v1::VerifyRequest& request);
+int64_t RequestCost(const WorldRegistry& worlds, const v1::NoiseGridRequest& request,
+                    int64_t max_regions);
+int64_t RequestCost(const WorldRegistry& worlds, const v1::NearestRequest& request,
+                    int64_t max_regions);
+
+}  // namespace scallop::server
