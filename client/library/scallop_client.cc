@@ -31,7 +31,7 @@ ScallopClient ScallopClient::Connect(const std::string& address, const Connectio
   grpc::ChannelArguments arguments;
   // Pages reach max_page_size * 24 bytes (1.5 MB by default); allow larger servers.
   arguments.SetMaxReceiveMessageSize(64 << 20);
-  arguments.SetServiceConfigJSON(std::string(kServiceConfigJson));
+  if (NamesBalancedTarget(address)) arguments.SetServiceConfigJSON(std::string(kServiceConfigJson));
   std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials();
   if (options.tls) {
     credentials = grpc::SslCredentials({.pem_root_certs = options.tls_ca_pem,

@@ -43,9 +43,11 @@ class ScallopClient {
 
   // A client of `address` over plaintext. Cheap: connects on the first call.
   // `address` is HOST:PORT or any gRPC target: dns:///HOST:PORT (every
-  // address the name resolves to), ipv4:ADDR:PORT,ADDR:PORT,... The channel
-  // balances calls round_robin over the addresses and retries the idempotent
-  // unary calls on UNAVAILABLE (service_config.h).
+  // address the name resolves to), ipv4:ADDR:PORT,ADDR:PORT,... A target
+  // that names its resolver (dns:, ipv4:, ipv6:) balances calls round_robin
+  // over its addresses and retries the idempotent unary calls on UNAVAILABLE
+  // (service_config.h); through a proxy, dns:///PROXY:PORT asks for the
+  // retries.
   static ScallopClient Connect(const std::string& address);
   // The same with TLS, mutual TLS and a token as `options` asks. PEM texts
   // are checked only at the handshake: a bad one fails the first call

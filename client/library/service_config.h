@@ -1,13 +1,22 @@
-// The gRPC service config every ScallopClient::Connect channel carries:
-// round_robin over every address the target resolves to (dns:///, ipv4:,
-// ipv6:), and retries of the idempotent unary calls on UNAVAILABLE, so a
-// replica that goes away (restart, crash, a proxy's 502) costs a retry, not
-// an error. See docs/deploy.md, "Balancing: client-side round_robin".
+// The gRPC service config of ScallopClient::Connect's channels to balanced
+// targets (dns:///, ipv4:, ipv6:): round_robin over every address the target
+// resolves to, and retries of the idempotent unary calls on UNAVAILABLE, so
+// a replica that goes away (restart, crash, a proxy's 502) costs a retry,
+// not an error. See docs/deploy.md, "Balancing: client-side round_robin".
 #pragma once
 
 #include <string_view>
 
 namespace scallop::client {
+
+// True for a target that names its resolver ("dns:///host:port",
+// "ipv4:a:p,b:p", "ipv6:..."): Connect gives those the config below. A bare
+// HOST:PORT keeps gRPC's defaults (pick_first, no retries), as before: a
+// client asks for balancing and retries by naming the resolver, also for a
+// single proxy (dns:///PROXY:PORT).
+constexpr bool NamesBalancedTarget(std::string_view target) {
+  return target.starts_with("dns:") || target.starts_with("ipv4:") || target.starts_with("ipv6:");
+}
 
 // The JSON given to grpc::ChannelArguments::SetServiceConfigJSON. Retried:
 // GetPoints, Nearest, NoiseGrid, DescribeWorld, GetServerInfo and Verify,

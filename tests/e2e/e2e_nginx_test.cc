@@ -162,8 +162,9 @@ class E2eNginxTest : public ::testing::Test {
     return killed;
   }
 
+  // dns:/// asks for the client's retry policy (service_config.h).
   static client::ScallopClient ThroughNginx() {
-    return client::ScallopClient::Connect(nginx_->Address(kNginxGrpcPort));
+    return client::ScallopClient::Connect("dns:///" + nginx_->Address(kNginxGrpcPort));
   }
 
   static inline ScallopdProcess* direct_ = nullptr;
