@@ -29,6 +29,11 @@ StatusOr<World> WorldFromMessage(const v1::World& message) {
   spec.density = message.density() == 0.0 ? 2.0 : message.density();
   spec.generator_version =
       message.generator_version() == 0 ? kGeneratorVersion : message.generator_version();
+  // Refused rather than dropped: a field world answered with constant spacing would be a
+  // silently wrong world.
+  if (message.has_radius_field()) {
+    return InvalidArgument("world.radius_field: radius-field worlds are not served by this build");
+  }
   return World::Create(spec);
 }
 
