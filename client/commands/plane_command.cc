@@ -29,7 +29,7 @@ int RunPlane(const PlaneArguments& arguments) {
   const double d = query->world.min_distance();
   const SvgStyle style{.seam_spacing = arguments.seams ? RegionLayout(d).side() : 0.0,
                        .dot_radius = d / 2};
-  WritePoints(std::cout, arguments.format, points->positions, points->ids, query->rect, style);
+  WritePoints(std::cout, arguments.format, points->positions, points->ids, {}, query->rect, style);
   return 0;
 }
 

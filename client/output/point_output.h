@@ -24,9 +24,15 @@ struct SvgStyle {
   double dot_radius = 0.5;
 };
 
-// CSV `x,y` with a header, or `id,x,y` when ids are given (one per point).
-// Coordinates are printed with 17 significant digits, so they read back exactly.
+// CSV `x,y` with a header, `id,x,y` when ids are given (one per point), and a last column `r`
+// when radii are given (a field world: R at each point). JSON has arrays x, y, id and r the same
+// way. SVG draws each point as a disk of radius r/2 when radii are given, else style.dot_radius.
+// Numbers are printed with 17 significant digits, so they read back exactly.
 void WritePoints(std::ostream& out, PointFormat format, std::span<const Vec2> points,
-                 std::span<const uint64_t> ids, const Rect& view, const SvgStyle& style);
+                 std::span<const uint64_t> ids, std::span<const double> radii, const Rect& view,
+                 const SvgStyle& style);
+
+// The CSV header line WritePoints writes, newline included: "id,x,y,r\n" and its shorter forms.
+std::string CsvHeader(bool with_ids, bool with_radii);
 
 }  // namespace scallop::cli

@@ -31,7 +31,7 @@ grpc::Status WriteRemotePoints(client::ScallopClient& client, const Request& req
   const SvgStyle style{.seam_spacing = seams ? 16 * d : 0.0, .dot_radius = d / 2};
   const Rect rect{request.rect().x0(), request.rect().y0(), request.rect().x1(),
                   request.rect().y1()};
-  WritePoints(out, format, points.positions, points.ids, rect, style);
+  WritePoints(out, format, points.positions, points.ids, {}, rect, style);
   return grpc::Status::OK;
 }
 
