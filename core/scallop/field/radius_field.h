@@ -57,8 +57,8 @@ struct RadiusFieldSpec {
   int octaves = 3;
   double gain = 0.5;
   // raster: the image, the world position of its lower-left corner and the side of a pixel.
-  std::shared_ptr<const RasterImage> raster;
-  Vec2 raster_origin;
+  std::shared_ptr<const RasterImage> raster = nullptr;
+  Vec2 raster_origin = {};
   double pixel_size = 1.0;
 };
 

@@ -45,6 +45,27 @@ Status ValidateSpec(const WorldSpec& spec) {
   return Status::Ok();
 }
 
+// A field's error in the world's namespace: "field.r_min must ..." becomes
+// "world.radius_field.r_min must ...", "raster.pixel_size ..." becomes
+// "world.radius_field.raster.pixel_size ...".
+Status InWorldNamespace(const Status& field_status) {
+  std::string_view message = field_status.message();
+  constexpr std::string_view kFieldPrefix = "field.";
+  if (message.starts_with(kFieldPrefix)) message.remove_prefix(kFieldPrefix.size());
+  return Status(field_status.code(), "world.radius_field." + std::string(message));
+}
+
+uint64_t Fingerprint(const WorldSpec& spec, const RadiusField* field) {
+  if (field == nullptr) {
+    return HashWords({spec.seed, std::bit_cast<uint64_t>(spec.min_distance),
+                      static_cast<uint64_t>(spec.algorithm), std::bit_cast<uint64_t>(spec.density),
+                      spec.generator_version});
+  }
+  return HashWords({spec.seed, std::bit_cast<uint64_t>(spec.min_distance),
+                    static_cast<uint64_t>(spec.algorithm), std::bit_cast<uint64_t>(spec.density),
+                    spec.generator_version, field->Fingerprint()});
+}
+
 }  // namespace
 
 std::string_view WorldAlgorithmName(WorldAlgorithm algorithm) {
@@ -78,23 +99,51 @@ Algorithm SamplerAlgorithm(WorldAlgorithm algorithm) {
   return Algorithm::kA3;
 }
 
-World::World(const WorldSpec& spec)
-    : spec_(spec),
-      fingerprint_(HashWords({spec.seed, std::bit_cast<uint64_t>(spec.min_distance),
-                              static_cast<uint64_t>(spec.algorithm),
-                              std::bit_cast<uint64_t>(spec.density), spec.generator_version})) {}
+World::World(const WorldSpec& spec, std::shared_ptr<const RadiusField> field)
+    : spec_(spec), field_(std::move(field)), fingerprint_(Fingerprint(spec_, field_.get())) {}
 
 StatusOr<World> World::Create(const WorldSpec& spec) {
-  if (Status status = ValidateSpec(spec); !status.ok()) return status;
   WorldSpec canonical = spec;
+  std::shared_ptr<const RadiusField> field;
+  if (spec.radius_field.has_value()) {
+    StatusOr<RadiusField> made = RadiusField::Create(*spec.radius_field);
+    if (!made.ok()) return InWorldNamespace(made.status());
+    // The field's own r_min is in the range d may take, so the checks below
+    // see a valid d.
+    canonical.min_distance = made->r_min();
+    if (made->kind() == RadiusFieldKind::kConstant) {
+      canonical.radius_field.reset();
+    } else {
+      if (spec.algorithm != WorldAlgorithm::kA3) {
+        return InvalidArgument(
+            "world.algorithm: a world with a radius field must use a3 (only A3's growth takes "
+            "a field), got " +
+            std::string(WorldAlgorithmName(spec.algorithm)));
+      }
+      field = std::make_shared<const RadiusField>(*std::move(made));
+      canonical.radius_field = field->spec();
+    }
+  }
+  if (Status status = ValidateSpec(canonical); !status.ok()) return status;
   if (!UsesDensity(canonical.algorithm)) canonical.density = 2.0;
-  return World(canonical);
+  return World(canonical, std::move(field));
 }
 
 World World::WithSeed(uint64_t seed) const {
   WorldSpec spec = spec_;
   spec.seed = seed;
-  return World(spec);
+  return World(spec, field_);
+}
+
+bool operator==(const World& a, const World& b) {
+  const WorldSpec& x = a.spec_;
+  const WorldSpec& y = b.spec_;
+  if (x.seed != y.seed || x.min_distance != y.min_distance || x.algorithm != y.algorithm ||
+      x.density != y.density || x.generator_version != y.generator_version) {
+    return false;
+  }
+  if ((a.field_ == nullptr) != (b.field_ == nullptr)) return false;
+  return a.field_ == nullptr || a.field_->Fingerprint() == b.field_->Fingerprint();
 }
 
 std::string World::Describe() const {
@@ -103,6 +152,20 @@ std::string World::Describe() const {
       << " algorithm=" << WorldAlgorithmName(algorithm());
   if (UsesDensity(algorithm())) out << " density=" << NumberText(density());
   out << " version=" << generator_version();
+  if (field_ != nullptr) {
+    const RadiusFieldSpec& f = field_->spec();
+    out << " field=" << RadiusFieldKindName(f.kind) << " r=[" << NumberText(f.r_min) << ","
+        << NumberText(f.r_max) << "]";
+    if (f.kind == RadiusFieldKind::kNoise) {
+      out << " frequency=" << NumberText(f.frequency) << " octaves=" << f.octaves
+          << " gain=" << NumberText(f.gain) << " noise_seed=" << f.noise_seed;
+    } else if (f.kind == RadiusFieldKind::kRaster) {
+      out << " raster=" << f.raster->width << "x" << f.raster->height << "x" << f.raster->bit_depth
+          << " origin=(" << NumberText(f.raster_origin.x) << "," << NumberText(f.raster_origin.y)
+          << ") pixel_size=" << NumberText(f.pixel_size) << " field_hash=" << std::hex
+          << field_->Fingerprint() << std::dec;
+    }
+  }
   return out.str();
 }
 

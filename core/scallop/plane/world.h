@@ -5,10 +5,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "scallop/base/status.h"
+#include "scallop/field/radius_field.h"
+#include "scallop/geometry/vec2.h"
 #include "scallop/sampling/sampler.h"
 
 namespace scallop {
@@ -41,8 +45,11 @@ struct WorldSpec {
   // r' / 2r in (1, 2] for A1 and A2; ignored (and normalised to 2) for A3.
   double density = 2.0;
   uint32_t generator_version = kGeneratorVersion;
-
-  friend bool operator==(const WorldSpec&, const WorldSpec&) = default;
+  // The spacing R(x) wanted at x (issue 24; docs/design.md, "Radius fields"). Absent: the
+  // constant spacing min_distance, as every world before fields (their points, ids and
+  // fingerprints are unchanged). Present: min_distance is ignored and normalised to r_min; a
+  // constant field is the plain world with min_distance = r.
+  std::optional<RadiusFieldSpec> radius_field = std::nullopt;
 };
 
 // A valid world in canonical form: the only way to get one is Create (or the
@@ -50,13 +57,20 @@ struct WorldSpec {
 // A value type, cheap to copy; equal worlds have equal points.
 class World {
  public:
-  World() : World(WorldSpec{}) {}
+  World() : World(WorldSpec{}, nullptr) {}
 
   // INVALID_ARGUMENT naming the field: d outside [2^-256, 2^256] (where
   // squares of coordinates stay normal doubles); an algorithm other than a1,
   // a2, a3; density outside (1, 2] for a1 and a2; a generator version this
   // build does not have. Fields that do not affect the points are normalised
   // (density for A3), so equal worlds compare and hash equal.
+  // A radius field is checked by RadiusField::Create; its errors are renamed
+  // into the world's namespace: the field's own name less "field.", after
+  // "world.radius_field." (world.radius_field.r_min, world.radius_field.frequency,
+  // world.radius_field.raster.pixel_size). A field world must use a3
+  // ("world.algorithm": only A3's growth takes a field). A constant field is
+  // normalised to the plain world with d = r, whose points it has; for other
+  // fields min_distance is normalised to r_min. Cost: a raster's O(pixels).
   static StatusOr<World> Create(const WorldSpec& spec);
 
   const WorldSpec& spec() const { return spec_; }
@@ -66,24 +80,41 @@ class World {
   double density() const { return spec_.density; }
   uint32_t generator_version() const { return spec_.generator_version; }
 
+  // The world's radius field; null for a constant-spacing world (including one
+  // given a constant field). Shared by every copy of the World.
+  const RadiusField* radius_field() const { return field_.get(); }
+  // The spacing wanted at x: R(x) for a field world, d otherwise.
+  double SpacingAt(Vec2 x) const { return field_ ? field_->Evaluate(x) : spec_.min_distance; }
+  // The largest spacing anywhere: r_max for a field world, d otherwise. Region
+  // sizes and neighbour reaches scale with it.
+  double max_spacing() const { return field_ ? field_->r_max() : spec_.min_distance; }
+
   // The same world with another seed: every seed is valid, so no check. For
   // series of unrelated worlds alike in everything else.
   World WithSeed(uint64_t seed) const;
 
   // A 64-bit digest of the canonical world, for seeds and cache keys:
-  // HashWords({seed, bits(d), algorithm, bits(density), generator_version}).
+  // HashWords({seed, bits(d), algorithm, bits(density), generator_version}),
+  // and for a field world HashWords({..., generator_version, field.Fingerprint()})
+  // with d = r_min (so a raster's pixels enter, never its address).
   uint64_t fingerprint() const { return fingerprint_; }
 
-  // "seed=7 d=1 algorithm=a3 version=3", for logs and errors.
+  // "seed=7 d=1 algorithm=a3 version=3", for logs and errors; a field world
+  // adds its field: "field=noise r=[1,8] frequency=0.01 octaves=3 gain=0.5
+  // noise_seed=4" or "field=raster r=[1,8] raster=640x480x16 origin=(0,0)
+  // pixel_size=2 field_hash=<hex of the field's fingerprint, pixels included>".
   std::string Describe() const;
 
-  friend bool operator==(const World& a, const World& b) { return a.spec_ == b.spec_; }
+  // Equal parameters; fields compare by their fingerprints (a raster by its
+  // pixels' hash, not by which copy of the image it holds).
+  friend bool operator==(const World& a, const World& b);
 
  private:
-  // REQUIRES: spec valid and canonical.
-  explicit World(const WorldSpec& spec);
+  // REQUIRES: spec valid and canonical; field built from spec.radius_field.
+  World(const WorldSpec& spec, std::shared_ptr<const RadiusField> field);
 
   WorldSpec spec_;
+  std::shared_ptr<const RadiusField> field_;
   uint64_t fingerprint_;
 };
 
