@@ -40,7 +40,7 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
     const double max_abs =
         std::max({std::abs(rect.x0), std::abs(rect.x1), std::abs(rect.y0), std::abs(rect.y1)}) +
         halo;
-    *response->mutable_world() = WorldToMessage(world);
+    *response->mutable_world() = shared_.worlds.ToMessage(world);
     response->set_points_checked(report->points_checked);
     response->set_pairs_checked(report->pairs_checked);
     response->set_min_distance(report->min_distance);

@@ -208,6 +208,15 @@ TEST(FieldMessagesTest, ErrorsNameTheFieldUnderTheCallersPrefix) {
   EXPECT_EQ(spec.status().message().find(" field."), std::string::npos) << spec.status().message();
 }
 
+TEST(FieldMessagesTest, ProseIsNotRenamed) {
+  v1::RadiusField message = ValidRaster();
+  message.mutable_raster()->set_pixel_size(0.01);
+  const StatusOr<RadiusFieldSpec> spec = RadiusFieldFromMessage(message, Catalog());
+  ASSERT_FALSE(spec.ok());
+  EXPECT_NE(spec.status().message().find("the raster field's slope bound"), std::string::npos)
+      << spec.status().message();
+}
+
 TEST(FieldMessagesTest, UnknownRasterListsTheLoadedOnesWithoutEchoingTheName) {
   v1::RadiusField message = ValidRaster();
   message.mutable_raster()->set_raster_name("\x1b[31mforged");

@@ -38,10 +38,8 @@ struct GenerateArguments {
 // rectangles (no torus) and only a3, which is the algorithm it generalises.
 int RunGenerateField(const GenerateArguments& arguments, const RadiusFieldSpec& spec,
                      const Rect& domain, uint64_t seed) {
-  if (arguments.algorithm != "a3") {
-    return ReportBadArguments(
-        "generate", InvalidArgument("--algorithm: a radius field is sampled by a3 only, got '" +
-                                    arguments.algorithm + "'"));
+  if (Status status = CheckFieldAlgorithm(arguments.field, arguments.algorithm); !status.ok()) {
+    return ReportBadArguments("generate", status);
   }
   if (arguments.torus) {
     return ReportBadArguments("generate",
@@ -56,10 +54,7 @@ int RunGenerateField(const GenerateArguments& arguments, const RadiusFieldSpec& 
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!points.ok()) return ReportBadArguments("generate", points.status());
-  std::vector<double> radii;
-  radii.reserve(points->size());
-  for (const Vec2& p : *points) radii.push_back(field->Evaluate(p));
-  WritePoints(std::cout, arguments.format, *points, {}, radii, domain, {});
+  WritePoints(std::cout, arguments.format, *points, {}, RadiiAt(&*field, *points), domain, {});
   if (arguments.stats) {
     std::cerr << std::setprecision(6) << "algorithm a3\nfield "
               << RadiusFieldKindName(field->kind()) << "\ncount " << points->size() << "\ngrown "

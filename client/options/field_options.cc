@@ -121,6 +121,12 @@ void AddFieldOptions(CLI::App& command, FieldArguments& arguments) {
   }
 }
 
+Status CheckFieldAlgorithm(const FieldArguments& arguments, const std::string& algorithm) {
+  if (!HasField(arguments) || algorithm == "a3") return Status::Ok();
+  return InvalidArgument("--algorithm: a radius field is sampled by a3 only, got '" + algorithm +
+                         "'");
+}
+
 bool HasField(const FieldArguments& arguments) {
   return !arguments.noise.empty() || !arguments.raster.empty();
 }

@@ -30,6 +30,10 @@ struct FieldArguments {
 // placement options need --radius-raster, and --radius-raster needs --radius-range.
 void AddFieldOptions(CLI::App& command, FieldArguments& arguments);
 
+// OK unless a field option was given with an --algorithm other than a3: a radius field is
+// sampled by A3's growth only (INVALID_ARGUMENT naming --algorithm).
+Status CheckFieldAlgorithm(const FieldArguments& arguments, const std::string& algorithm);
+
 // True when a field option was given (the world is a field world).
 bool HasField(const FieldArguments& arguments);
 

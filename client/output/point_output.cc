@@ -70,6 +70,14 @@ void WriteSvg(std::ostream& out, std::span<const Vec2> points, std::span<const d
 
 }  // namespace
 
+std::vector<double> RadiiAt(const RadiusField* field, std::span<const Vec2> points) {
+  std::vector<double> radii;
+  if (field == nullptr) return radii;
+  radii.reserve(points.size());
+  for (const Vec2& p : points) radii.push_back(field->Evaluate(p));
+  return radii;
+}
+
 std::string CsvHeader(bool with_ids, bool with_radii) {
   return std::string(with_ids ? "id," : "") + "x,y" + (with_radii ? ",r" : "") + "\n";
 }

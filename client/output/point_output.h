@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "scallop/field/radius_field.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
 
@@ -31,6 +32,9 @@ struct SvgStyle {
 void WritePoints(std::ostream& out, PointFormat format, std::span<const Vec2> points,
                  std::span<const uint64_t> ids, std::span<const double> radii, const Rect& view,
                  const SvgStyle& style);
+
+// R at each point for a field (the r column); empty for null (a world without a field).
+std::vector<double> RadiiAt(const RadiusField* field, std::span<const Vec2> points);
 
 // The CSV header line WritePoints writes, newline included: "id,x,y,r\n" and its shorter forms.
 std::string CsvHeader(bool with_ids, bool with_radii);

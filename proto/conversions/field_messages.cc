@@ -25,7 +25,8 @@ constexpr FieldNames kRasterNames{{{"field.r_min", "raster.r_min"},
                                    {"raster", "raster.raster_name"}}};
 
 // Every core name in the message replaced by `where`.field, the leading one followed by a colon.
-// A name counts only as a whole word, so "raster" does not match inside "raster.pixel_size".
+// A name counts only as a whole word, so "raster" does not match inside "raster.pixel_size",
+// and a name without a dot only at the start.
 Status Renamed(const Status& status, const FieldNames& names, std::string_view where) {
   const std::string& text = status.message();
   std::string out;
@@ -35,6 +36,8 @@ Status Renamed(const Status& status, const FieldNames& names, std::string_view w
     const bool word_start = k == 0 || text[k - 1] == ' ' || text[k - 1] == '(';
     for (const auto& [core, field] : names) {
       if (!word_start || text.compare(k, core.size(), core) != 0) continue;
+      // A bare word ("raster") is a field name only where it leads; in prose it is prose.
+      if (k != 0 && core.find('.') == std::string_view::npos) continue;
       const size_t end = k + core.size();
       if (end < text.size() && text[end] != ' ' && text[end] != ',' && text[end] != ';' &&
           text[end] != ':' && text[end] != ')') {
@@ -142,6 +145,16 @@ v1::RadiusField RadiusFieldToMessage(const RadiusFieldSpec& spec, const NamedRas
       break;
     }
   }
+  return message;
+}
+
+v1::RasterInfo RasterInfoMessage(const NamedRaster& raster) {
+  v1::RasterInfo message;
+  message.set_name(raster.name);
+  message.set_width(raster.image->width);
+  message.set_height(raster.image->height);
+  message.set_bit_depth(raster.image->bit_depth);
+  message.set_pixel_hash(raster.pixel_hash);
   return message;
 }
 

@@ -29,6 +29,9 @@ StatusOr<RadiusFieldSpec> RadiusFieldFromMessage(const v1::RadiusField& message,
 // hold). A constant spec gives an empty message: a world without a field carries none.
 v1::RadiusField RadiusFieldToMessage(const RadiusFieldSpec& spec, const NamedRaster* raster);
 
+// The raster's name, size, bit depth and pixel hash, as ServerInfo and DescribeWorld report it.
+v1::RasterInfo RasterInfoMessage(const NamedRaster& raster);
+
 // The raster a spec's image came from, in the catalog: null for other kinds, a null catalog
 // or an image it does not hold.
 const NamedRaster* RasterOf(const RadiusFieldSpec& spec, const RasterCatalog* rasters);
