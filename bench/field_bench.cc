@@ -1,7 +1,9 @@
 // Radius fields, bounded: SampleField on an r_max / r_min = 8 noise field against uniform A3
 // (Sample, constant d) and the variable-radius Bridson baseline (k = 30), all in one run so
 // the figures read as ratios. Points per second; N about 1M in the named benchmarks, 10k for a
-// smoke run.
+// smoke run. On the infinite plane: a cold query (fresh engine, one thread) of a square of
+// the same field world against the uniform A3 world (d = 1) on a square of the same count,
+// N about 250k.
 //
 //   build/bench/field_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
@@ -11,6 +13,7 @@
 #include "bench/square_sampling.h"
 #include "scallop/field/radius_field.h"
 #include "scallop/field/value_noise.h"
+#include "scallop/plane/plane_engine.h"
 #include "scallop/sampling/field_sampler.h"
 #include "scallop/sampling/sampler.h"
 
@@ -87,6 +90,44 @@ void BM_UniformA3(benchmark::State& state) {
   Report(state, SampleSquares(state, Algorithm::kA3, 0.8));
 }
 
+// Cold plane queries, a fresh one-thread engine per iteration: every region the square needs is
+// generated (regions around it too). `field` selects the noise field world, else uniform A3.
+void PlaneCold(benchmark::State& state, bool field) {
+  WorldSpec spec{.seed = 2026, .min_distance = 1.0};
+  if (field) spec.radius_field = BenchField().spec();
+  const World world = *World::Create(spec);
+  // Points per unit area: the field's 0.047 (above), A3's 0.86 at d = 1.
+  const double density = field ? 0.047 : 0.86;
+  const double side = std::sqrt(static_cast<double>(state.range(0)) / density);
+  int64_t produced = 0;
+  for (auto _ : state) {
+    PlaneEngine engine(PlaneEngineOptions{.threads = 1});
+    StatusOr<PlanePoints> points = engine.Points(world, {0.0, 0.0, side, side});
+    produced = static_cast<int64_t>(points->positions.size());
+    benchmark::DoNotOptimize(points->positions.data());
+  }
+  Report(state, produced);
+}
+
+void BM_PlaneColdUniform(benchmark::State& state) { PlaneCold(state, false); }
+void BM_PlaneColdField(benchmark::State& state) { PlaneCold(state, true); }
+
+BENCHMARK(BM_PlaneColdUniform)
+    ->Name("plane_cold_uniform_a3_smoke")
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlaneColdField)
+    ->Name("plane_cold_field_noise8_smoke")
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlaneColdUniform)
+    ->Name("plane_cold_uniform_a3_250k")
+    ->Arg(250000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlaneColdField)
+    ->Name("plane_cold_field_noise8_250k")
+    ->Arg(250000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_UniformA3)->Name("uniform_a3_smoke")->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FieldSampler)->Name("field_noise8_smoke")->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FieldBridson)->Name("field_bridson_smoke")->Arg(10000)->Unit(benchmark::kMillisecond);

@@ -16,7 +16,7 @@ grpc::ServerUnaryReactor* ScallopService::DescribeWorld(grpc::CallbackServerCont
       return status;
     const World& world = resolved.world;
     log.set_world(world.Describe());
-    const RegionLayout layout(world.min_distance());
+    const RegionLayout layout(world);
     *response->mutable_world() = shared_.worlds.ToMessage(world);
     response->set_name(resolved.name);
     response->set_description(world.Describe());

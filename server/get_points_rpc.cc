@@ -73,7 +73,7 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
   size_t total = 0;
   {
     PointsAppender appender(points, std::min(upper_bound, page_size), world.radius_field());
-    total = VisitPoints(regions, RegionLayout(world.min_distance()), rect, offset, end,
+    total = VisitPoints(regions, RegionLayout(world), rect, offset, end,
                         [&](const Vec2& position, uint64_t id) { appender.Append(position, id); });
   }
   if (offset > total) {

@@ -17,7 +17,7 @@ constexpr int64_t kBlockSide = 8;
 
 grpc::Status WarmRegions(PlaneEngine& engine, const World& world, const Rect& rect,
                          const std::function<bool()>& stop) {
-  const RegionLayout layout(world.min_distance());
+  const RegionLayout layout(world);
   const auto [low, high] = RegionsOverlapping(layout, rect);
   for (int64_t j = low.j; j <= high.j; j += kBlockSide) {
     for (int64_t i = low.i; i <= high.i; i += kBlockSide) {

@@ -59,7 +59,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
         !status.ok()) {
       return status;
     }
-    range_ = RegionsOverlapping(RegionLayout(world_.min_distance()), rect_);
+    range_ = RegionsOverlapping(RegionLayout(world_), rect_);
     next_ = range_.low;
     return grpc::Status::OK;
   }
@@ -72,7 +72,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
   // stream's concatenation equals the unary answer. Skips regions with no
   // point inside the rectangle.
   void WriteNextChunk() {
-    const RegionLayout layout(world_.min_distance());
+    const RegionLayout layout(world_);
     while (true) {
       if (context_->IsCancelled()) {
         FinishWith({grpc::StatusCode::CANCELLED, "stream: cancelled or past its deadline"});

@@ -27,7 +27,8 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
     // that goes stops the generation (the verifier itself runs to its end).
     // A rectangle the rule refuses is left to VerifyWorldRect to report.
     const QueryLimit limit{.max_area = shared_.config.max_verify_area, .name = "max_verify_area"};
-    const double d = world.min_distance(), halo = 2 * d;
+    // The verifier's halo: 2 d, or 2 r_max for a field world (world_verifier.h).
+    const double d = world.min_distance(), halo = 2 * world.max_spacing();
     if (const Rect grown = Grown(rect, halo);
         CheckQueryRect(world, grown, limit, "rect+halo").ok()) {
       if (grpc::Status status = WarmRegions(shared_.engine, world, grown, StopWhenGone(context));
@@ -55,6 +56,18 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
     response->set_maximal_ok(report->maximal_ok);
     response->set_maximality_tolerance(MaximalityTolerance(d, max_abs));
     response->set_passed(report->passed());
+    if (report->field) {
+      const FieldVerifyReport& field = *report->field;
+      v1::FieldVerifyResponse& out = *response->mutable_field();
+      out.set_conflicts(field.conflicts);
+      out.set_min_spacing_ratio(field.min_spacing_ratio);
+      out.set_largest_gap(field.largest_gap);
+      out.set_largest_gap_x(field.largest_gap_spot.x);
+      out.set_largest_gap_y(field.largest_gap_spot.y);
+      out.set_gap_bound(field.gap_bound);
+      out.set_points_masked(field.points_masked);
+      out.set_passed(field.passed());
+    }
     log.add_points(report->points_checked);
     return grpc::Status::OK;
   });

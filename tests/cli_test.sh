@@ -267,6 +267,13 @@ check "plane noise JSON: has r" grep -qF '"r":[' "$work/out"
 expect_exit 0 plane "${raster[@]}" --rect -10,0,20,20
 check "plane raster: CSV header is id,x,y,r" test "$(head -n 1 "$work/out")" = "id,x,y,r"
 
+# verify judges a field world by the max rule, masks included.
+expect_exit 0 verify --radius-noise 1,3,0.02 --seed 4 --rect -20,-20,20,20
+check "verify noise world: field conflicts 0" grep -qE '^field conflicts +0 ' "$work/out"
+check "verify noise world: pass" grep -qE '^result +pass$' "$work/out"
+expect_exit 0 verify "${raster[@]}" --rect -10,0,20,20 --json
+check "verify raster world --json: field passed" grep -qF '"passed":true,"points_masked":0' "$work/out"
+
 # analyze with a field: rho per band of R, conflicts against R, the points over the field.
 expect_exit 0 analyze --radius-noise 1,4,0.02 --domain 0,0,60,60 --sets 2 --bands 3 --json \
   --png "$work/field.png"

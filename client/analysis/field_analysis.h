@@ -24,7 +24,7 @@ struct FieldBand {
   double nn_ratio_sum = 0;  // sum of |p - q| / max(R(p), R(q)), q nearest by that ratio
   // rho normalised by local R: a set of spacing R(x) with normalised radius rho has local
   // density 2 rho^2 / (sqrt 3 R(x)^2), so sum over the band's points of R^2 ~ 2 rho^2 area /
-  // sqrt 3 and rho = sqrt(sqrt 3 / 2 * sum_r2 / area). 0.83-0.85 for maximal sets
+  // sqrt 3 and rho = sqrt(sqrt 3 / 2 * sum_r2 / area). Uniform A3 gives 0.86
   // (docs/quality.md).
   double Rho() const;
   double NearestRatio() const { return nn_points > 0 ? nn_ratio_sum / nn_points : 0.0; }

@@ -27,10 +27,9 @@ int RunPlane(const PlaneArguments& arguments) {
   StatusOr<PlanePoints> points = engine.Points(query->world, query->rect);
   if (!points.ok()) return ReportBadArguments("plane", points.status());
   const World& world = query->world;
-  // Seams every region side: 16 times the world's largest spacing.
-  const SvgStyle style{
-      .seam_spacing = arguments.seams ? RegionLayout(world.max_spacing()).side() : 0.0,
-      .dot_radius = world.min_distance() / 2};
+  // Seams every region side (16 d; a field world's 6 r_max).
+  const SvgStyle style{.seam_spacing = arguments.seams ? RegionLayout(world).side() : 0.0,
+                       .dot_radius = world.min_distance() / 2};
   WritePoints(std::cout, arguments.format, points->positions, points->ids,
               RadiiAt(world.radius_field(), points->positions), query->rect, style);
   return 0;

@@ -167,6 +167,12 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   if (results.size() != positions.size()) {
     return InvalidArgument("results: must have one entry per position");
   }
+  // The search grids are laid out in d-cells and certified by the constant
+  // spacing's maximality (F1 < d); a field world needs both redone with R.
+  if (world.radius_field() != nullptr) {
+    return InvalidArgument(
+        "world.radius_field: Nearest and NoiseGrid do not take radius-field worlds yet");
+  }
   // ValidatePosition's test inline; the call only to name a bad position.
   const double limit = RegionLayout(world.min_distance()).precision_limit();
   for (size_t k = 0; k < positions.size(); ++k) {

@@ -81,6 +81,8 @@ class NearestLookup {
   // their number: callers bound those. `stop` is polled before every grid
   // is built or read and before brute-force answers, so an abandoned call
   // ends within one grid's work with kCancelled (results then unspecified).
+  // A radius-field world is refused (INVALID_ARGUMENT naming
+  // world.radius_field): the grids are not laid out for it yet.
   Status Nearest(const World& world, std::span<const Vec2> positions,
                  std::span<NearestPoint> results, const StopRequested& stop = nullptr);
 

@@ -95,14 +95,15 @@ size_t IndicesInZone(std::span<const Vec2> own, std::span<const Vec2> spill, con
 
 NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
                                       std::span<const RegionPoints* const> lower_neighbours) {
-  const RegionLayout layout(world.min_distance());
-  const double d = world.min_distance();
+  const RegionLayout layout(world);
+  // d, or r_max for a field world: the farthest two points can conflict.
+  const double d = world.max_spacing();
   const Rect rect = layout.RegionRect(key);
-  const Rect sampled = Grown(rect, kSamplingMarginInD * d);
+  const Rect sampled = Grown(rect, SamplingMargin(world));
   // A point farther than this from the sampled rectangle neither constrains
   // nor seeds it; 1% more than needed is harmless (its neighbourhood there is
   // simply empty) and keeps the bound clear of rounding.
-  const double reach = 1.01 * (UsesDensity(world.algorithm()) ? world.density() * d : d);
+  const double reach = SeedReach(world);
   // A seed's neighbourhood reaches `reach` further, and where it enters a
   // covered rectangle the points covering that are within d.
   const double inert_reach = 2 * reach + 1.01 * d;

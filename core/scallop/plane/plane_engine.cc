@@ -30,7 +30,7 @@ Status PlaneEngine::ValidateQuery(const World& world, const Rect& rect) const {
 }
 
 std::vector<RegionKey> PlaneEngine::RegionsOverlapping(const World& world, const Rect& rect) {
-  const RegionRange range = scallop::RegionsOverlapping(RegionLayout(world.min_distance()), rect);
+  const RegionRange range = scallop::RegionsOverlapping(RegionLayout(world), rect);
   std::vector<RegionKey> keys;
   for (int64_t j = range.low.j; j <= range.high.j; ++j) {
     for (int64_t i = range.low.i; i <= range.high.i; ++i) keys.push_back({i, j});
@@ -126,7 +126,7 @@ StatusOr<PlanePoints> PlaneEngine::Points(const World& world, const Rect& rect) 
   PlanePoints result;
   result.positions.reserve(upper_bound);
   result.ids.reserve(upper_bound);
-  VisitPoints(*regions, RegionLayout(world.min_distance()), rect, 0, upper_bound,
+  VisitPoints(*regions, RegionLayout(world), rect, 0, upper_bound,
               [&](const Vec2& position, uint64_t id) {
                 result.positions.push_back(position);
                 result.ids.push_back(id);
@@ -146,8 +146,8 @@ StatusOr<int64_t> PlaneEngine::Count(const World& world, const Rect& rect) {
 
 StatusOr<RegionHandle> PlaneEngine::Region(const World& world, RegionKey key) {
   // Checked on the key, because the rectangle of an extreme key would overflow.
-  if (key.i < -kRegionsPerHalfAxis || key.i >= kRegionsPerHalfAxis ||
-      key.j < -kRegionsPerHalfAxis || key.j >= kRegionsPerHalfAxis) {
+  const int64_t n = RegionLayout(world).regions_per_half_axis();
+  if (key.i < -n || key.i >= n || key.j < -n || key.j >= n) {
     return OutOfRange("region: lies beyond the precision range of 2^32 * min_distance");
   }
   return Resolve(world, {key}).front();

@@ -102,7 +102,7 @@ size_t VisitPoints(const std::vector<RegionHandle>& regions, const RegionLayout&
     const std::vector<Vec2>& points = region->points;
     const Rect owned = layout.RegionRect(region->key);
     // Ids of one region are consecutive: the index sits in the low bits.
-    const uint64_t first_id = EncodePointId(region->key, 0);
+    const uint64_t first_id = EncodePointId(region->key, 0, layout.point_id_index_bits());
     if (rect.x0 <= owned.x0 && owned.x1 <= rect.x1 && rect.y0 <= owned.y0 && owned.y1 <= rect.y1) {
       const size_t from = std::max(begin, index) - index;
       const size_t to = std::min(points.size(), end > index ? end - index : 0);

@@ -27,7 +27,7 @@ Status CheckRectBounds(const World& world, const Rect& rect, std::string_view fi
   const std::string name(field);
   const std::pair<const char*, double> corners[] = {
       {".x0", rect.x0}, {".y0", rect.y0}, {".x1", rect.x1}, {".y1", rect.y1}};
-  const double range = RegionLayout(world.min_distance()).precision_limit();
+  const double range = RegionLayout(world).precision_limit();
   for (const auto& [corner, value] : corners) {
     if (!std::isfinite(value)) return InvalidArgument(name + corner + ": must be finite");
     if (std::abs(value) > range) {
@@ -52,7 +52,7 @@ Status CheckQueryCost(const World& world, const Rect& rect, const QueryLimit& li
                            limit_name + ")");
   }
   const double max_regions = MaxRegionsCrossed(limit.max_area);
-  const double regions = RegionsOverlapping(RegionLayout(d), rect).Count();
+  const double regions = RegionsOverlapping(RegionLayout(world), rect).Count();
   if (regions > max_regions) {
     return InvalidArgument(std::string(what) + ": crosses " + NumberText(regions) +
                            " regions of 16 min_distance, at most " + NumberText(max_regions) +

@@ -9,6 +9,7 @@
 #include "scallop/plane/point_id.h"
 #include "scallop/random/rng.h"
 #include "scallop/sampling/boundary_sampler.h"
+#include "scallop/sampling/field_sampler.h"
 #include "scallop/sampling/scalloped_sampler.h"
 
 namespace scallop {
@@ -18,6 +19,25 @@ namespace scallop {
 // than d apart: S - 2 m >= 2 d.
 static_assert(kSamplingMarginInD < kRegionSideInD &&
               kRegionSideInD - 2 * kSamplingMarginInD >= 2.0);
+// The same for a field world, in r_max, with the reach of a field point's
+// curve (at most 2 r_max at the slope bound 1/2, plus 1%): every point a run
+// gathers lies within its 8 neighbours, and no two points of regions that are
+// not neighbours can conflict (they are more than r_max apart).
+static_assert(kFieldSamplingMarginInRMax + 2.02 < kFieldRegionSideInRMax &&
+              kFieldRegionSideInRMax - 2 * kFieldSamplingMarginInRMax > 1.25);
+
+double SamplingMargin(const World& world) {
+  return world.radius_field() != nullptr ? kFieldSamplingMarginInRMax * world.max_spacing()
+                                         : kSamplingMarginInD * world.min_distance();
+}
+
+double SeedReach(const World& world) {
+  if (const RadiusField* field = world.radius_field()) {
+    return 1.01 * field->r_max() / (1.0 - field->Slope());
+  }
+  const double d = world.min_distance();
+  return 1.01 * (UsesDensity(world.algorithm()) ? world.density() * d : d);
+}
 
 std::vector<RegionKey> LowerRankedNeighbours(RegionKey key) {
   std::vector<RegionKey> neighbours;
@@ -67,14 +87,28 @@ void StorePlaced(const std::vector<Vec2>& placed, const std::vector<bool>& place
   }
 }
 
+// The run of a constant world's region, by its algorithm.
+std::vector<Vec2> SampleConstant(const World& world, const SamplingProblem& problem, Rng& rng,
+                                 std::vector<bool>* unprocessed) {
+  switch (world.algorithm()) {
+    case WorldAlgorithm::kA1:
+      return SampleScalloped(problem, CandidateChoice::kByArea, rng);
+    case WorldAlgorithm::kA2:
+      return SampleScalloped(problem, CandidateChoice::kUniform, rng);
+    case WorldAlgorithm::kA3:
+      break;
+  }
+  return SampleBoundary(problem, rng, unprocessed);
+}
+
 }  // namespace
 
 RegionPoints GenerateRegion(const World& world, RegionKey key,
                             std::span<const RegionPoints* const> lower_neighbours) {
-  const RegionLayout layout(world.min_distance());
+  const RegionLayout layout(world);
   const double d = world.min_distance();
   const Rect rect = layout.RegionRect(key);
-  const Rect sampled = Grown(rect, kSamplingMarginInD * d);
+  const Rect sampled = Grown(rect, SamplingMargin(world));
   // The neighbours' points constrain and seed the run; their spill inside the
   // rectangle is adopted; their rectangles, covered already, stay closed.
   NeighbourPoints gathered = GatherNeighbourPoints(world, key, lower_neighbours);
@@ -92,31 +126,31 @@ RegionPoints GenerateRegion(const World& world, RegionKey key,
   problem.inert_points = gathered.inert;
   problem.covered_rects = gathered.covered;
   problem.stop_when_covered = rect;
-  problem.seed_area = Grown(Rect{centre.x, centre.y, centre.x, centre.y}, d / 2);
+  problem.seed_area =
+      Grown(Rect{centre.x, centre.y, centre.x, centre.y}, world.SpacingAt(centre) / 2);
   Rng rng(
       HashWords({world.fingerprint(), static_cast<uint64_t>(key.i), static_cast<uint64_t>(key.j)}));
   std::vector<Vec2> placed;
   std::vector<bool> placed_unprocessed;
-  switch (world.algorithm()) {
-    case WorldAlgorithm::kA1:
-      placed = SampleScalloped(problem, CandidateChoice::kByArea, rng);
-      break;
-    case WorldAlgorithm::kA2:
-      placed = SampleScalloped(problem, CandidateChoice::kUniform, rng);
-      break;
-    case WorldAlgorithm::kA3:
-      placed = SampleBoundary(problem, rng, &placed_unprocessed);
-      break;
+  // A point whose curve (circle) crossed the sampled rectangle's edge had that
+  // part clipped, not covered: it may still seed a later region.
+  double clipped_reach = 1.01 * d;
+  if (const RadiusField* field = world.radius_field()) {
+    placed = SampleFieldProblem(problem, *field, rng, &placed_unprocessed);
+    clipped_reach = SeedReach(world);
+  } else {
+    placed = SampleConstant(world, problem, rng, &placed_unprocessed);
   }
   // Every placed point is a world point: outside the rectangle it lies in a
   // higher-ranked neighbour (the covered rectangles are closed to it), which
   // adopts it.
   RegionPoints region{key, std::move(gathered.adopted), 0, {}, {}};
   region.adopted = static_cast<uint32_t>(region.points.size());
-  StorePlaced(placed, placed_unprocessed, rect, Grown(sampled, -1.01 * d), region);
-  // The hexagonal packing bound (296 points in a 16 d square) keeps k in its
-  // 10 id bits; a violation would be a sampler bug, not bad input.
-  assert(region.points.size() < (size_t{1} << kPointIdIndexBits));
+  StorePlaced(placed, placed_unprocessed, rect, Grown(sampled, -clipped_reach), region);
+  // The packing bound (296 points in a 16 d square; region_layout.h for
+  // fields) keeps k in its id bits; a violation would be a sampler bug, not
+  // bad input.
+  assert(region.points.size() < (size_t{1} << layout.point_id_index_bits()));
   region.points.shrink_to_fit();  // a no-op unless the adopted points came with spare room
   return region;
 }

@@ -21,6 +21,26 @@ namespace scallop {
 // See docs/design.md, "Growing regions".
 inline constexpr double kSamplingMarginInD = 6.5;
 
+// The same margin for a radius-field world, in units of r_max (regions are
+// kFieldRegionSideInRMax = 6 r_max wide). A run processes only candidates
+// whose curve may reach its region, so its spill stays within about 2 r_max
+// of it where R is near r_max (2 R / (1 - L) at the very worst), and the wall
+// at 2.25 r_max is seldom met; with 1.25 or 0.75 r_max the wall froze a
+// straight front, 20% too dense before it and 30% too sparse after it. Two
+// points conflict only when less than max(R(p), R(q)) <= r_max apart, and the
+// spill of two regions that are not neighbours stays S - 2 m = 1.5 r_max
+// apart. docs/design.md, "Field worlds on the plane".
+inline constexpr double kFieldSamplingMarginInRMax = 2.25;
+
+// The margin a region of `world` is sampled with: 6.5 d, or 2.25 r_max.
+double SamplingMargin(const World& world);
+
+// How far from the rectangles open to a run a lower-ranked neighbour's point
+// may seed it (and constrain it, for A3 and fields): A3 d, A1 and A2 r' (the
+// density times d), a field r_max / (1 - L), the farthest a point's curve
+// reaches; each plus 1%.
+double SeedReach(const World& world);
+
 // One generated region: the world's points in its rectangle, and the points
 // it placed in higher-ranked neighbours, which those adopt.
 struct RegionPoints {
@@ -51,13 +71,16 @@ std::vector<RegionKey> LowerRankedNeighbours(RegionKey key);
 
 // Generates region `key`. `lower_neighbours[n]` must be the generated region
 // LowerRankedNeighbours(key)[n]. The sampler runs on the rectangle grown by
-// kSamplingMarginInD d until the rectangle is covered; the neighbours' points
-// (and spill) within reach of it (d for A3, r' for A1 and A2) constrain the
+// SamplingMargin(world) until the rectangle is covered; the neighbours' points
+// (and spill) within reach of it (SeedReach) constrain the
 // new ones and seed their neighbourhoods, and no new point lands in a
 // neighbour's rectangle. The region's random stream is
-// Rng(HashWords({world.fingerprint(), i, j})).
+// Rng(HashWords({world.fingerprint(), i, j})). A field world's regions are
+// grown by SampleFieldProblem (sampling/field_sampler.h).
 // Cost: O(points placed), about 220 for
-// A3 on average (a rank-0 region places more, a rank-3 region fewer).
+// A3 on average (a rank-0 region places more, a rank-3 region fewer); a
+// field world's region holds up to 0.86 (6 r_max / R)^2 points where the
+// field is near R.
 RegionPoints GenerateRegion(const World& world, RegionKey key,
                             std::span<const RegionPoints* const> lower_neighbours);
 

@@ -40,32 +40,35 @@ std::vector<RegionKey> ViewportTracker::Update(const ViewportUpdate& update) {
     }
   }
   for (const RegionKey& key : update.held_regions) {
-    if (kept(key)) sent_[key].set();
+    if (kept(key)) sent_[key].SetAll();
   }
   return evicted;
 }
 
 StatusOr<std::vector<RegionChunk>> ViewportTracker::TakeUnsent(const PlanePoints& in_view) {
   std::vector<RegionChunk> chunks;
+  const int64_t max_points = world_.radius_field() == nullptr
+                                 ? kMaxPointsPerRegion
+                                 : int64_t{1} << layout_.point_id_index_bits();
   SentPoints* sent = nullptr;  // the bits of region `current`
   RegionKey current;
   for (size_t n = 0; n < in_view.ids.size(); ++n) {
     const Vec2 position = in_view.positions[n];
-    const DecodedPointId id =
-        DecodePointId(in_view.ids[n], layout_.RegionOf(position.x, position.y));
-    if (id.index >= kMaxPointsPerRegion) {
+    const DecodedPointId id = DecodePointId(
+        in_view.ids[n], layout_.RegionOf(position.x, position.y), layout_.point_id_index_bits());
+    if (id.index >= max_points) {
       return Status(StatusCode::kInternal, "region (" + std::to_string(id.region.i) + ", " +
                                                std::to_string(id.region.j) + "): point index " +
                                                std::to_string(id.index) + " exceeds " +
-                                               std::to_string(kMaxPointsPerRegion));
+                                               std::to_string(max_points));
     }
     // Points come grouped by region, so one map lookup per region suffices.
     if (sent == nullptr || id.region != current) {
       sent = &sent_[id.region];
       current = id.region;
     }
-    if (sent->test(id.index)) continue;
-    sent->set(id.index);
+    if (sent->Test(id.index)) continue;
+    sent->Set(id.index);
     if (chunks.empty() || chunks.back().key != id.region) chunks.push_back({id.region, {}});
     chunks.back().points.positions.push_back(position);
     chunks.back().points.ids.push_back(in_view.ids[n]);
@@ -77,7 +80,7 @@ std::vector<RegionKey> ViewportTracker::HeldRegions() const {
   std::vector<RegionKey> keys;
   keys.reserve(sent_.size());
   for (const auto& [key, sent] : sent_) {
-    if (sent.any()) keys.push_back(key);
+    if (sent.Any()) keys.push_back(key);
   }
   return keys;
 }

@@ -4,7 +4,7 @@
 // the server's Follow call drives it, and tests drive it directly.
 #pragma once
 
-#include <bitset>
+#include <algorithm>
 #include <map>
 #include <optional>
 #include <vector>
@@ -20,7 +20,8 @@
 namespace scallop {
 
 // A 16 d square holds at most 296 points d apart (the hexagonal packing
-// bound), so one bit per point index fits in 296 bits.
+// bound), so a constant world's point indices are below 296. A field world's
+// are below 2^point_id_index_bits (region_layout.h).
 inline constexpr int kMaxPointsPerRegion = 296;
 
 // One viewport update, as the follower states it.
@@ -56,7 +57,7 @@ struct RegionChunk {
 // Not thread-safe: one tracker per follower, used by one update at a time.
 class ViewportTracker {
  public:
-  explicit ViewportTracker(const World& world) : world_(world), layout_(world.min_distance()) {}
+  explicit ViewportTracker(const World& world) : world_(world), layout_(world) {}
 
   // Moves to `update`: every region held before and no longer kept (not
   // touching the viewport grown by keep_margin) is forgotten and returned,
@@ -71,7 +72,8 @@ class ViewportTracker {
   // they come (PlaneEngine::Points order: regions by row, then column), and
   // marked as sent. `in_view` must be the world's points in the viewport of
   // the last Update (PlaneEngine::Points(world, viewport)). INTERNAL when a
-  // point index exceeds kMaxPointsPerRegion (a broken generator). O(points).
+  // point index exceeds kMaxPointsPerRegion, or for a field world
+  // 2^point_id_index_bits (a broken generator). O(points).
   StatusOr<std::vector<RegionChunk>> TakeUnsent(const PlanePoints& in_view);
 
   // Regions whose points the follower holds (in whole or in part), in (i, j) order.
@@ -84,7 +86,31 @@ class ViewportTracker {
   std::optional<Rect> PrefetchArea(const ViewportUpdate& update) const;
 
  private:
-  using SentPoints = std::bitset<kMaxPointsPerRegion>;
+  // The indices of one region's points sent so far, one bit each, grown as
+  // indices come (a field world's region may hold 2^18 points, most never in
+  // view); or all of them, for a region the follower holds whole.
+  class SentPoints {
+   public:
+    void SetAll() {
+      all_ = true;
+      words_.clear();
+    }
+    void Set(uint32_t index) {
+      if (all_) return;
+      if (index / 64 >= words_.size()) words_.resize(index / 64 + 1);
+      words_[index / 64] |= uint64_t{1} << (index % 64);
+    }
+    bool Test(uint32_t index) const {
+      return all_ || (index / 64 < words_.size() && ((words_[index / 64] >> (index % 64)) & 1));
+    }
+    bool Any() const {
+      return all_ || std::any_of(words_.begin(), words_.end(), [](uint64_t w) { return w != 0; });
+    }
+
+   private:
+    bool all_ = false;
+    std::vector<uint64_t> words_;
+  };
 
   World world_;
   RegionLayout layout_;

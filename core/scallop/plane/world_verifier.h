@@ -15,14 +15,15 @@ namespace scallop {
 double MaximalityTolerance(double min_distance, double max_abs);
 
 // Verifies `rect` of `world`: spacing for every pair with an end inside,
-// maximality for every spot inside. What it reads is the rectangle grown by a
-// 2 d halo, so the rectangle rule (query_rect.h) applies to both: `rect`'s
-// bounds, then the grown rectangle's bounds (OUT_OF_RANGE within 2 d of the
-// limit) and its cost under `limit`, named "rect+halo" in messages.
-// REQUIRES: the engine's max_query_area >= limit.max_area.
-// With `inside`, also the world's points in `rect`, in query order, for
-// callers that go on to measure them (scallop analyze).
-// Cost: one query of the grown rectangle plus O(N log N) for the verifier.
+// maximality for every spot inside. A radius-field world is judged by the
+// field verifier (VerifyFieldWindow: the max rule, G measured against R at
+// each spot, masks excluded), its report in VerifyReport::field. What it
+// reads is the rectangle grown by a 2 d halo (2 r_max for a field world), so the rectangle rule
+// (query_rect.h) applies to both: `rect`'s bounds, then the grown rectangle's bounds (OUT_OF_RANGE
+// within 2 d of the limit) and its cost under `limit`, named "rect+halo" in messages. REQUIRES: the
+// engine's max_query_area >= limit.max_area. With `inside`, also the world's points in `rect`, in
+// query order, for callers that go on to measure them (scallop analyze). Cost: one query of the
+// grown rectangle plus O(N log N) for the verifier.
 StatusOr<VerifyReport> VerifyWorldRect(PlaneEngine& engine, const World& world, const Rect& rect,
                                        const QueryLimit& limit, PlanePoints* inside = nullptr);
 

@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "scallop/geometry/rect_tiles.h"
 #include "scallop/random/rng.h"
 #include "scallop/sampling/field_point_grid.h"
+#include "scallop/sampling/sampling_problem.h"
 
 namespace scallop {
 namespace {
@@ -17,19 +19,24 @@ constexpr double kTwoPi = 6.283185307179586;
 
 class FieldRun {
  public:
-  FieldRun(const FieldSamplerOptions& options, const RadiusField& field, FieldSampleStats* stats)
-      : rect_(options.domain),
+  // `problem` (optional): a plane region's fixed and inert points, closed rectangles and stop
+  // rectangle; its domain must be `domain`.
+  FieldRun(const Rect& domain, const RadiusField& field, Rng rng, int curve_tries,
+           FieldSampleStats* stats, const SamplingProblem* problem = nullptr)
+      : rect_(domain),
         field_(field),
-        rng_(HashWords({options.seed, 0x4649454c44ULL})),
-        grid_(rect_, GridCell(field)),
-        tries_(options.curve_tries),
+        rng_(rng),
+        grid_(problem == nullptr ? rect_ : Grown(rect_, 2.0 * field.r_max()), GridCell(field)),
+        tries_(curve_tries),
         slope_(field.Slope()),
-        stats_(stats) {
+        stats_(stats),
+        problem_(problem) {
     const double m =
         std::max({std::abs(rect_.x0), std::abs(rect_.x1), std::abs(rect_.y0), std::abs(rect_.y1)}) +
         field.r_max();
     pad_absolute_ = 8.0 * (std::nextafter(m, INFINITY) - m);
     reach_factor_ = (1.0 / (1.0 - slope_)) * (1.0 + 1e-9);
+    if (problem != nullptr && problem->stop_when_covered) stop_ = *problem->stop_when_covered;
   }
 
   std::vector<Vec2> Run() {
@@ -41,10 +48,47 @@ class FieldRun {
         break;
       }
     }
-    Sweep();
+    Sweep(rect_);
     std::vector<Vec2> out;
     out.reserve(grid_.points().size());
     for (const FieldPoint& q : grid_.points()) out.push_back(q.p);
+    return out;
+  }
+
+  // The stream after the run, for a caller that goes on drawing from it.
+  const Rng& rng() const { return rng_; }
+
+  // A plane region's run (SampleFieldProblem): the inert points constrain, the fixed points
+  // constrain and are the first candidates, a seed from seed_area starts the growth when no
+  // fixed point is near enough to seed the domain; only candidates whose curve may reach the
+  // stop rectangle are processed, and the sweep certifies that rectangle (or the domain).
+  std::vector<Vec2> RunProblem(std::vector<bool>* unprocessed) {
+    const SamplingProblem& problem = *problem_;
+    for (const Vec2& p : problem.inert_points) grid_.Add(p, Radius(p));
+    for (const Vec2& p : problem.fixed_points) Place(p, Radius(p));
+    const auto fixed_count = static_cast<int32_t>(grid_.points().size());
+    const double seed_reach = field_.r_max() * reach_factor_;
+    if (NeedsSeedPoint(problem, seed_reach)) {
+      for (int k = 0; k < 64; ++k) {
+        if (TryPlace(SeedPoint(problem, rng_))) break;
+      }
+    }
+    Grow();
+    Sweep(stop_ ? *stop_ : rect_);
+    const std::vector<FieldPoint>& all = grid_.points();
+    if (unprocessed != nullptr) {
+      unprocessed->assign(all.size() - static_cast<size_t>(fixed_count), false);
+      for (const std::vector<int32_t>* left : {&queue_, &beyond_stop_}) {
+        for (const int32_t index : *left) {
+          if (index >= fixed_count) {
+            (*unprocessed)[static_cast<size_t>(index - fixed_count)] = true;
+          }
+        }
+      }
+    }
+    std::vector<Vec2> out;
+    out.reserve(all.size() - static_cast<size_t>(fixed_count));
+    for (size_t k = static_cast<size_t>(fixed_count); k < all.size(); ++k) out.push_back(all[k].p);
     return out;
   }
 
@@ -68,20 +112,33 @@ class FieldRun {
     return field_.Evaluate(x);
   }
 
-  bool Admissible(Vec2 x, double rx) const {
-    return rect_.Contains(x) && !field_.IsMasked(x) && !grid_.Conflicts(x, rx, Reach(rx));
+  // Where a new point may go: the domain, outside masks and the problem's closed rectangles.
+  bool Open(Vec2 x) const {
+    return rect_.Contains(x) && !field_.IsMasked(x) &&
+           (problem_ == nullptr || !InCoveredRect(*problem_, x));
   }
 
+  bool Admissible(Vec2 x, double rx) const { return Open(x) && !grid_.Conflicts(x, rx, Reach(rx)); }
+
   bool TryPlace(Vec2 x) {
-    if (!rect_.Contains(x) || field_.IsMasked(x)) return false;
+    if (!Open(x)) return false;
     const double rx = Radius(x);
     if (grid_.Conflicts(x, rx, Reach(rx))) return false;
     Place(x, rx);
     return true;
   }
 
+  // Whether a candidate's curve may reach the stop rectangle: its spots lie within
+  // Pad(R(p) / (1 - L)) of p.
+  bool ReachesStop(const FieldPoint& p) const {
+    if (!stop_) return false;
+    const double limit = Pad(p.r * reach_factor_);
+    return SquaredDistance(*stop_, p.p) < limit * limit;
+  }
+
   void Place(Vec2 x, double rx) {
-    queue_.push_back(static_cast<int32_t>(grid_.points().size()));
+    const auto index = static_cast<int32_t>(grid_.points().size());
+    (!stop_ || ReachesStop({x, rx}) ? queue_ : beyond_stop_).push_back(index);
     grid_.Add(x, rx);
   }
 
@@ -120,7 +177,7 @@ class FieldRun {
     if (!(rx <= spot_limit_ && SquaredDistance(p.p, x) <= spot_limit_ * spot_limit_)) {
       return Admissible(x, rx);
     }
-    if (!rect_.Contains(x) || field_.IsMasked(x)) return false;
+    if (!Open(x)) return false;
     for (const FieldPoint& q : near_) {
       const double dx = x.x - q.p.x;
       const double dy = x.y - q.p.y;
@@ -157,6 +214,8 @@ class FieldRun {
     }
   }
 
+  // Takes candidates uniformly until none is left; with a stop rectangle, only those whose
+  // curve can reach it (the sweep then certifies the rectangle).
   void Grow() {
     while (!queue_.empty()) {
       const size_t k = rng_.Below(queue_.size());
@@ -270,13 +329,13 @@ class FieldRun {
 
   // Base cells of side r_max / 2 (diagonal 0.71 r_max, so a point can cover one whole) in rows
   // from the bottom; depth grows until the side is below 2^-30 r_min.
-  void Sweep() {
+  void Sweep(const Rect& area) {
     const double base = 0.5 * field_.r_max();
     max_depth_ = 0;
     for (double side = base; side > field_.r_min() * kFieldLeafFraction; side *= 0.5) {
       ++max_depth_;
     }
-    ForEachTile(rect_, base, [&](const Rect& tile) { Certify(tile, 0); });
+    ForEachTile(area, base, [&](const Rect& tile) { Certify(tile, 0); });
   }
 
   Rect rect_;
@@ -286,10 +345,16 @@ class FieldRun {
   int tries_;
   double slope_;
   FieldSampleStats* stats_;
+  const SamplingProblem* problem_;
+  std::optional<Rect> stop_;
   double pad_absolute_ = 0.0;
   double reach_factor_ = 1.0;
   int max_depth_ = 0;
+  // Candidates not processed yet. With a stop rectangle, queue_ holds those whose curve may
+  // reach it and beyond_stop_ the others, which are never processed: they are the run's
+  // growth front, left for the next region to continue.
   std::vector<int32_t> queue_;
+  std::vector<int32_t> beyond_stop_;
   // The current candidate's neighbours (GatherNear) and how far its curve's spots reach.
   std::vector<FieldPoint> near_;
   double spot_limit_ = 0.0;
@@ -320,7 +385,18 @@ Status ValidateFieldSamplerOptions(const FieldSamplerOptions& options, const Rad
 StatusOr<std::vector<Vec2>> SampleField(const FieldSamplerOptions& options,
                                         const RadiusField& field, FieldSampleStats* stats) {
   if (Status s = ValidateFieldSamplerOptions(options, field); !s.ok()) return s;
-  return FieldRun(options, field, stats).Run();
+  return FieldRun(options.domain, field, Rng(HashWords({options.seed, 0x4649454c44ULL})),
+                  options.curve_tries, stats)
+      .Run();
+}
+
+std::vector<Vec2> SampleFieldProblem(const SamplingProblem& problem, const RadiusField& field,
+                                     Rng& rng, std::vector<bool>* unprocessed,
+                                     FieldSampleStats* stats) {
+  FieldRun run(problem.domain.rect, field, rng, FieldSamplerOptions{}.curve_tries, stats, &problem);
+  std::vector<Vec2> placed = run.RunProblem(unprocessed);
+  rng = run.rng();
+  return placed;
 }
 
 }  // namespace scallop

@@ -10,6 +10,8 @@
 #include "scallop/field/radius_field.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
+#include "scallop/random/rng.h"
+#include "scallop/sampling/sampling_problem.h"
 
 namespace scallop {
 
@@ -74,6 +76,29 @@ Status ValidateFieldSamplerOptions(const FieldSamplerOptions& options, const Rad
 StatusOr<std::vector<Vec2>> SampleField(const FieldSamplerOptions& options,
                                         const RadiusField& field,
                                         FieldSampleStats* stats = nullptr);
+
+// A region of a field world on the plane (plane/region_generator.cc): SampleField's growth and
+// sweep on problem.domain.rect (never a torus), with
+//  - inert_points: constrain new points (R evaluated at each: R is a pure function of the
+//    field, so these are the bits the point was placed with);
+//  - fixed_points: constrain, and are the first candidates of the growth, in their order;
+//  - covered_rects: closed, no new point lands in them;
+//  - stop_when_covered: the growth stops once no candidate whose curve can reach the
+//    rectangle (|p - rect| < Pad(R(p) / (1 - L))) is left, and the sweep certifies that
+//    rectangle only; without it, the whole domain;
+//  - seed_area: when no fixed point lies within r_max / (1 - L) of the domain, up to 64 spots
+//    drawn uniformly there are tried as the first point (masks may refuse them all; the
+//    sweep then seeds).
+// min_distance and density are ignored. Returns the new points in placement order and, with
+// `unprocessed`, whether each was still a candidate when the run stopped; advances `rng`.
+// Guarantees: no new point conflicts with any point of the run (fixed, inert or new) or lies
+// in a mask, a closed rectangle or outside the domain; every spot of the stop rectangle (or
+// domain) outside masks is covered, to SampleField's tolerance, by the run's points.
+// REQUIRES: the domain is within the field's coordinate limit (kMaxFieldCoordinate r_min, plus
+// a few r_max) and FieldDomainCells of it is bounded: the plane's regions are.
+std::vector<Vec2> SampleFieldProblem(const SamplingProblem& problem, const RadiusField& field,
+                                     Rng& rng, std::vector<bool>* unprocessed,
+                                     FieldSampleStats* stats = nullptr);
 
 // Baseline for comparison only: Bridson 2007 with a field, as users have it today. From a
 // random active point p, `attempts` uniform darts of the annulus R(p)..2R(p); each is kept when

@@ -5,12 +5,14 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 
 #include "scallop/base/status.h"
 #include "scallop/geometry/domain.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
+#include "scallop/verify/field_verifier.h"
 
 namespace scallop {
 
@@ -59,7 +61,15 @@ struct VerifyReport {
 
   bool spacing_ok = false;  // spacing_violations == 0
   bool maximal_ok = false;  // largest_empty_circle < d * (1 + max_tolerance)
-  bool passed() const { return spacing_ok && maximal_ok && points_outside == 0; }
+  // A radius-field world's window (plane/world_verifier.h): the field verifier's report, whose
+  // verdicts spacing_ok and maximal_ok repeat (conflicts under the max rule, the certified
+  // bound of G); spacing_violations is its conflict count, min_distance and the closest pair
+  // its pair of least |p - q| / max(R(p), R(q)), largest_empty_centre its largest gap's spot.
+  // largest_empty_circle and the seam statistics stay unset: they are the constant rule's.
+  std::optional<FieldVerifyReport> field;
+  bool passed() const {
+    return spacing_ok && maximal_ok && points_outside == 0 && (!field || field->passed());
+  }
 };
 
 // Judges a bounded sampler's output.

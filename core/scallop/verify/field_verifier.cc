@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "scallop/geometry/rect_tiles.h"
@@ -84,21 +85,24 @@ class GapSearch {
   double stop_gap_;
 };
 
-}  // namespace
-
-StatusOr<FieldVerifyReport> VerifyFieldDomain(std::span<const Vec2> points, const Rect& domain,
-                                              const RadiusField& field,
-                                              const FieldVerifyOptions& options) {
+// VerifyFieldDomain and VerifyFieldWindow: `area` is the domain, or with `window` the window
+// whose pairs and spots are judged while the points outside it are context.
+StatusOr<FieldVerifyReport> Verify(std::span<const Vec2> points, const Rect& area,
+                                   const RadiusField& field, const FieldVerifyOptions& options,
+                                   bool window) {
+  const Rect& domain = area;
   if (!std::isfinite(domain.x0) || !std::isfinite(domain.y0) || !std::isfinite(domain.x1) ||
       !std::isfinite(domain.y1) || !(domain.x0 < domain.x1) || !(domain.y0 < domain.y1)) {
-    return InvalidArgument("domain must be a finite rectangle with x0 < x1 and y0 < y1");
+    return InvalidArgument(std::string(window ? "window" : "domain") +
+                           " must be a finite rectangle with x0 < x1 and y0 < y1");
   }
   if (!std::isfinite(options.max_tolerance) || options.max_tolerance < 0.0) {
     return InvalidArgument("max_tolerance must be finite and >= 0");
   }
   if (!(FieldDomainCells(domain, field.r_min()) <= kMaxFieldDomainCells)) {
     return InvalidArgument(
-        "domain (width / field.r_min + 2) * (height / field.r_min + 2) must be at most 6.4e7");
+        std::string(window ? "window" : "domain") +
+        " (width / field.r_min + 2) * (height / field.r_min + 2) must be at most 6.4e7");
   }
   for (const Vec2& p : points) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
@@ -106,15 +110,18 @@ StatusOr<FieldVerifyReport> VerifyFieldDomain(std::span<const Vec2> points, cons
     }
   }
   FieldVerifyReport report;
-  report.points_checked = static_cast<int64_t>(points.size());
   const double r_max = field.r_max();
   FieldPointGrid grid(Grown(domain, 2.0 * r_max), r_max);
-  std::vector<double> radius(points.size());
+  std::vector<char> judged(points.size());
   for (size_t k = 0; k < points.size(); ++k) {
-    radius[k] = field.Evaluate(points[k]);
-    if (!domain.Contains(points[k])) ++report.points_outside;
-    if (field.IsMasked(points[k])) ++report.points_masked;
-    grid.Add(points[k], radius[k]);
+    const double radius = field.Evaluate(points[k]);
+    judged[k] = !window || domain.Contains(points[k]);
+    if (judged[k]) {
+      ++report.points_checked;
+      if (!domain.Contains(points[k])) ++report.points_outside;
+      if (field.IsMasked(points[k])) ++report.points_masked;
+    }
+    grid.Add(points[k], radius);
   }
   // Pairs: the grid files points in insertion order, so a point's index is its position.
   const std::vector<FieldPoint>& filed = grid.points();
@@ -122,7 +129,7 @@ StatusOr<FieldVerifyReport> VerifyFieldDomain(std::span<const Vec2> points, cons
     const Vec2 p = filed[a].p;
     grid.AnyNear(Grown(Rect{p.x, p.y, p.x, p.y}, r_max), [&](const FieldPoint& q) {
       const auto b = static_cast<size_t>(&q - filed.data());
-      if (b <= a) return false;
+      if (b <= a || !(judged[a] || judged[b])) return false;
       ++report.pairs_checked;
       const double dx = p.x - q.p.x;
       const double dy = p.y - q.p.y;
@@ -149,6 +156,20 @@ StatusOr<FieldVerifyReport> VerifyFieldDomain(std::span<const Vec2> points, cons
   }
   report.maximal_ok = report.gap_bound < options.max_tolerance * r_max;
   return report;
+}
+
+}  // namespace
+
+StatusOr<FieldVerifyReport> VerifyFieldDomain(std::span<const Vec2> points, const Rect& domain,
+                                              const RadiusField& field,
+                                              const FieldVerifyOptions& options) {
+  return Verify(points, domain, field, options, /*window=*/false);
+}
+
+StatusOr<FieldVerifyReport> VerifyFieldWindow(std::span<const Vec2> points, const Rect& window,
+                                              const RadiusField& field,
+                                              const FieldVerifyOptions& options) {
+  return Verify(points, window, field, options, /*window=*/true);
 }
 
 }  // namespace scallop

@@ -61,4 +61,15 @@ StatusOr<FieldVerifyReport> VerifyFieldDomain(std::span<const Vec2> points, cons
                                               const RadiusField& field,
                                               const FieldVerifyOptions& options = {});
 
+// Judges a window of a larger point set, such as a plane world's rectangle with a halo of
+// 2 r_max around it (plane/world_verifier.h): conflicts for every pair with an end in the
+// half-open window, maximality at every unmasked spot of the closed window, both as above;
+// points outside the window are context (they constrain and cover, and are not counted in
+// points_checked or points_outside). A halo of 2 r_max is enough: no farther point can
+// conflict with a point of the window or make G negative there. Errors and cost as above,
+// naming "window".
+StatusOr<FieldVerifyReport> VerifyFieldWindow(std::span<const Vec2> points, const Rect& window,
+                                              const RadiusField& field,
+                                              const FieldVerifyOptions& options = {});
+
 }  // namespace scallop
