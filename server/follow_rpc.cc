@@ -133,7 +133,8 @@ class FollowReactor final
     for (size_t n = 0; n < chunks->size(); ++n) {
       const RegionChunk& chunk = (*chunks)[n];
       v1::PointsChunk& message = *answer_[n].mutable_chunk();
-      AppendPoints(chunk.points, 0, chunk.points.ids.size(), *message.mutable_points());
+      AppendPoints(chunk.points, 0, chunk.points.ids.size(), *message.mutable_points(),
+                   world_.radius_field());
       message.set_region_i(chunk.key.i);
       message.set_region_j(chunk.key.j);
       log_.add_points(static_cast<int64_t>(chunk.points.ids.size()));

@@ -74,7 +74,7 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
   const size_t end = offset + page_size;
   size_t total = 0;
   {
-    PointsAppender appender(points, std::min(upper_bound, page_size));
+    PointsAppender appender(points, std::min(upper_bound, page_size), world.radius_field());
     total = VisitPoints(regions, RegionLayout(world), rect, offset, end,
                         [&](const Vec2& position, uint64_t id) { appender.Append(position, id); });
   }
@@ -84,7 +84,7 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
                         "page_token: points beyond the end of the rectangle");
   }
   if (end < total) response.set_next_page_token(shared_.page_tokens.Encode(world, rect, end));
-  *response.mutable_world() = WorldToMessage(world);
+  *response.mutable_world() = shared_.worlds.ToMessage(world);
   log.add_points(points.ids_size());
   return grpc::Status::OK;
 }

@@ -211,7 +211,7 @@ int main(int argc, char** argv) {
   spdlog::set_level(
       spdlog::level::from_str(config.log_level));  // validated: never "off" by mistake
 
-  const scallop::server::WorldRegistry worlds(config.worlds, config.default_world);
+  const scallop::server::WorldRegistry worlds(config.worlds, config.default_world, config.rasters);
   std::optional<scallop::server::TokenTable> tokens;
   if (!config.auth_tokens.empty()) {
     const std::vector<std::string> names = worlds.names();

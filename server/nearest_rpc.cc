@@ -56,7 +56,7 @@ grpc::ServerUnaryReactor* ScallopService::Nearest(grpc::CallbackServerContext* c
             !status.ok()) {
           return ToGrpcStatus(status);
         }
-        *response->mutable_world() = WorldToMessage(world);
+        *response->mutable_world() = shared_.worlds.ToMessage(world);
         const int count = static_cast<int>(results.size());
         for (auto* field :
              {response->mutable_f1(), response->mutable_f2(), response->mutable_nearest_xs(),

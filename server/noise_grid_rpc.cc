@@ -52,7 +52,7 @@ grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext*
             EvaluateNoiseGrid(shared_.nearest_lookup, world, spec,
                               shared_.config.max_noise_grid_samples, StopWhenGone(context));
         if (!image.ok()) return ToGrpcStatus(image.status());
-        *response->mutable_world() = WorldToMessage(world);
+        *response->mutable_world() = shared_.worlds.ToMessage(world);
         response->set_width(image->width);
         response->set_height(image->height);
         response->mutable_values()->Add(image->values.begin(), image->values.end());

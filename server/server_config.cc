@@ -5,20 +5,28 @@
 
 #include <algorithm>
 #include <charconv>
+#include <filesystem>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <tuple>
 #include <vector>
 
+#include "field_messages.h"
+
 namespace scallop::server {
 namespace {
 
 StatusOr<World> WorldFromFields(const std::string& where, uint64_t seed, double min_distance,
-                                const std::string& algorithm_name, double density) {
+                                const std::string& algorithm_name, double density,
+                                std::optional<RadiusFieldSpec> field = std::nullopt) {
   StatusOr<WorldAlgorithm> algorithm = ParseWorldAlgorithm(algorithm_name, where + ".algorithm");
   if (!algorithm.ok()) return algorithm.status();
-  StatusOr<World> world = World::Create(
-      {.seed = seed, .min_distance = min_distance, .algorithm = *algorithm, .density = density});
+  StatusOr<World> world = World::Create({.seed = seed,
+                                         .min_distance = min_distance,
+                                         .algorithm = *algorithm,
+                                         .density = density,
+                                         .radius_field = std::move(field)});
   if (!world.ok()) return InvalidArgument(where + ": " + world.status().message());
   return world;
 }
@@ -55,6 +63,58 @@ Status ValidateClientLimits(const ServerConfig& config) {
   return Status::Ok();
 }
 
+// INVALID_ARGUMENT naming `where`.KEY for the first key of `node` not in `known`, or when
+// `node` is not a map: typos are refused rather than ignored.
+Status CheckKeys(const YAML::Node& node, const std::set<std::string>& known,
+                 const std::string& where) {
+  if (!node.IsMap()) return InvalidArgument(where + ": must be a map");
+  for (const auto& entry : node) {
+    const std::string key = entry.first.as<std::string>();
+    if (!known.contains(key)) return InvalidArgument(where + ": unknown key '" + key + "'");
+  }
+  return Status::Ok();
+}
+
+// A world's `radius_field` as the message it mirrors (the proto's field names), then read as
+// a request's would be, with errors named `where`.noise.frequency and so on.
+StatusOr<RadiusFieldSpec> RadiusFieldFromYaml(const YAML::Node& node, const RasterCatalog& rasters,
+                                              const std::string& where) {
+  if (Status keys = CheckKeys(node, {"noise", "raster"}, where); !keys.ok()) return keys;
+  v1::RadiusField message;
+  if (const YAML::Node noise = node["noise"]) {
+    const std::string at = where + ".noise";
+    if (Status keys =
+            CheckKeys(noise, {"r_min", "r_max", "frequency", "octaves", "gain", "noise_seed"}, at);
+        !keys.ok()) {
+      return keys;
+    }
+    v1::NoiseRadiusField& out = *message.mutable_noise();
+    out.set_r_min(noise["r_min"].as<double>(0.0));
+    out.set_r_max(noise["r_max"].as<double>(0.0));
+    out.set_frequency(noise["frequency"].as<double>(0.0));
+    out.set_octaves(noise["octaves"].as<int32_t>(0));
+    out.set_gain(noise["gain"].as<double>(0.0));
+    out.set_noise_seed(noise["noise_seed"].as<uint64_t>(0));
+  }
+  if (const YAML::Node raster = node["raster"]) {
+    const std::string at = where + ".raster";
+    if (node["noise"]) return InvalidArgument(where + ": give noise or raster, not both");
+    if (Status keys = CheckKeys(
+            raster, {"raster_name", "origin_x", "origin_y", "pixel_size", "r_min", "r_max"}, at);
+        !keys.ok()) {
+      return keys;
+    }
+    v1::RasterRadiusField& out = *message.mutable_raster();
+    out.set_raster_name(raster["raster_name"].as<std::string>(""));
+    out.set_origin_x(raster["origin_x"].as<double>(0.0));
+    out.set_origin_y(raster["origin_y"].as<double>(0.0));
+    out.set_pixel_size(raster["pixel_size"].as<double>(0.0));
+    out.set_r_min(raster["r_min"].as<double>(0.0));
+    out.set_r_max(raster["r_max"].as<double>(0.0));
+  }
+  return RadiusFieldFromMessage(message, rasters, where);
+}
+
 }  // namespace
 
 Status LoadConfigFile(const std::string& path, ServerConfig& config) {
@@ -71,6 +131,7 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
                                     "page_token_secret",
                                     "default_world",
                                     "worlds",
+                                    "rasters",
                                     "max_nearest_batch",
                                     "max_noise_grid_samples",
                                     "max_follow_area",
@@ -161,14 +222,39 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
     read("max_connection_age_seconds", config.max_connection_age_seconds);
     read("max_connection_age_grace_seconds", config.max_connection_age_grace_seconds);
     read("hard_exit_seconds", config.hard_exit_seconds);
+    // Rasters first: worlds name them. A relative path is read from the config's folder, so
+    // a config and its images move together.
+    for (const auto& entry : root["rasters"]) {
+      const std::string name = entry.first.as<std::string>();
+      key = "rasters." + name;
+      std::filesystem::path file = entry.second.as<std::string>();
+      if (file.is_relative()) file = std::filesystem::path(path).parent_path() / file;
+      if (Status loaded = config.rasters.Load(name, file.string(), path + ": " + key);
+          !loaded.ok()) {
+        return loaded;
+      }
+    }
     for (const auto& entry : root["worlds"]) {
       const std::string name = entry.first.as<std::string>();
       const YAML::Node& fields = entry.second;
       key = "worlds." + name;
+      if (Status keys =
+              CheckKeys(fields, {"seed", "min_distance", "algorithm", "density", "radius_field"},
+                        path + ": " + key);
+          !keys.ok()) {
+        return keys;
+      }
+      std::optional<RadiusFieldSpec> field;
+      if (fields["radius_field"]) {
+        StatusOr<RadiusFieldSpec> read = RadiusFieldFromYaml(fields["radius_field"], config.rasters,
+                                                             path + ": " + key + ".radius_field");
+        if (!read.ok()) return read.status();
+        field = std::move(*read);
+      }
       StatusOr<World> world = WorldFromFields(
           path + ": worlds." + name, fields["seed"].as<uint64_t>(0),
           fields["min_distance"].as<double>(1.0), fields["algorithm"].as<std::string>("a3"),
-          fields["density"].as<double>(2.0));
+          fields["density"].as<double>(2.0), std::move(field));
       if (!world.ok()) return world.status();
       config.worlds[name] = *world;
     }

@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "raster_catalog.h"
 #include "scallop/base/status.h"
 #include "scallop/plane/world.h"
 
@@ -104,6 +105,9 @@ struct ServerConfig {
   std::string default_world = "default";
   // Named worlds, sorted by name. "default" (seed 1, d 1, A3) is built in.
   std::map<std::string, World> worlds{{"default", *World::Create({.seed = 1})}};
+  // Grayscale PNGs by name, loaded when the config is read (`rasters: {NAME:
+  // PATH}`), for raster radius fields of named and inline worlds.
+  RasterCatalog rasters;
 };
 
 // The largest area any method hands the engine: its own area limit, which
@@ -111,8 +115,13 @@ struct ServerConfig {
 double LargestAreaLimit(const ServerConfig& config);
 
 // Overrides `config` with the keys of a YAML file (the field names above, plus
-// `worlds: {name: {seed, min_distance, algorithm, density}}`). INVALID_ARGUMENT
-// naming the file and key on a bad value or an unknown key.
+// `rasters: {NAME: PATH}`, each a grayscale PNG read now, a relative PATH
+// from the file's folder, and `worlds: {name: {seed, min_distance,
+// algorithm, density, radius_field}}`, radius_field as the proto's World has
+// it: `{noise: {r_min, r_max, frequency, octaves, gain, noise_seed}}` or
+// `{raster: {raster_name, origin_x, origin_y, pixel_size, r_min, r_max}}`).
+// INVALID_ARGUMENT naming the file and key on a bad value, an unknown key or
+// a raster that cannot be read (missing, not a PNG, not grayscale, too large).
 Status LoadConfigFile(const std::string& path, ServerConfig& config);
 
 // Parses "NAME:SEED:MIN_DISTANCE:ALGORITHM[:DENSITY]" (the --world flag).

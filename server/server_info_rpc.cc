@@ -1,4 +1,5 @@
 // GetServerInfo: the generator version, the limits and the configured worlds.
+#include "field_messages.h"
 #include "scallop/plane/region_layout.h"
 #include "server/scallop_service.h"
 
@@ -31,7 +32,13 @@ grpc::ServerUnaryReactor* ScallopService::GetServerInfo(grpc::CallbackServerCont
     limits.set_rate_limit_per_second(shared_.config.rate_limit_per_second);
     limits.set_rate_limit_burst(shared_.config.rate_limit_burst);
     response->set_default_world(shared_.worlds.default_name());
-    for (const std::string& name : shared_.worlds.names()) response->add_world_names(name);
+    for (const auto& [name, world] : shared_.worlds.worlds()) {
+      response->add_world_names(name);
+      response->add_world_descriptions(world.Describe());
+    }
+    for (const auto& [name, raster] : shared_.worlds.rasters().rasters()) {
+      *response->add_rasters() = RasterInfoMessage(raster);
+    }
     return grpc::Status::OK;
   });
 }

@@ -95,7 +95,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
       }
       if (points->ids.empty()) continue;
       chunk_.Clear();
-      AppendPoints(*points, 0, points->ids.size(), *chunk_.mutable_points());
+      AppendPoints(*points, 0, points->ids.size(), *chunk_.mutable_points(), world_.radius_field());
       chunk_.set_region_i(key.i);
       chunk_.set_region_j(key.j);
       log_.add_points(static_cast<int64_t>(points->ids.size()));

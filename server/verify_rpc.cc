@@ -46,7 +46,7 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
         const double max_abs =
             std::max({std::abs(rect.x0), std::abs(rect.x1), std::abs(rect.y0), std::abs(rect.y1)}) +
             halo;
-        *response->mutable_world() = WorldToMessage(world);
+        *response->mutable_world() = shared_.worlds.ToMessage(world);
         response->set_points_checked(report->points_checked);
         response->set_pairs_checked(report->pairs_checked);
         response->set_min_distance(report->min_distance);
@@ -59,6 +59,18 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
         response->set_spacing_violations_across_seams(report->spacing_violations_across_seams);
         response->set_spacing_ok(report->spacing_ok);
         response->set_maximal_ok(report->maximal_ok);
+        if (report->field) {
+          const FieldVerifyReport& field = *report->field;
+          v1::FieldVerifyResponse& out = *response->mutable_field();
+          out.set_conflicts(field.conflicts);
+          out.set_min_spacing_ratio(field.min_spacing_ratio);
+          out.set_largest_gap(field.largest_gap);
+          out.set_largest_gap_x(field.largest_gap_spot.x);
+          out.set_largest_gap_y(field.largest_gap_spot.y);
+          out.set_gap_bound(field.gap_bound);
+          out.set_points_masked(field.points_masked);
+          out.set_passed(field.passed());
+        }
         response->set_maximality_tolerance(MaximalityTolerance(world.min_distance(), max_abs));
         response->set_passed(report->passed());
         log.add_points(report->points_checked);

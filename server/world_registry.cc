@@ -3,13 +3,33 @@
 
 #include "server/client_text.h"
 #include "server/status_mapping.h"
-#include "world_messages.h"
 
 namespace scallop::server {
 
 grpc::Status WorldRegistry::ResolveInline(const v1::World& message, ResolvedWorld& resolved) const {
-  StatusOr<World> world = WorldFromMessage(message);
+  const bool raster = message.radius_field().has_raster();
+  std::string key;
+  if (raster) {
+    // Equal messages serialize alike: the fields are scalars written in field order.
+    key = message.SerializeAsString();
+    std::lock_guard lock(inline_mutex_);
+    if (const auto found = inline_rasters_.find(key); found != inline_rasters_.end()) {
+      resolved = {found->second, ""};
+      return grpc::Status::OK;
+    }
+  }
+  StatusOr<World> world = WorldFromMessage(message, &rasters_);
   if (!world.ok()) return ToGrpcStatus(world.status());
+  if (raster) {
+    std::lock_guard lock(inline_mutex_);
+    if (inline_rasters_.emplace(key, *world).second) {
+      inline_order_.push_back(key);
+      if (inline_order_.size() > kInlineRasterWorlds) {
+        inline_rasters_.erase(inline_order_.front());
+        inline_order_.pop_front();
+      }
+    }
+  }
   resolved = {*world, ""};
   return grpc::Status::OK;
 }

@@ -1,16 +1,22 @@
 // The worlds a request may name: inline in the request, by a configured name,
-// or (neither) the server's default. Immutable after start, so every request
-// thread reads it without locking.
+// or (neither) the server's default; and the rasters loaded at start, which
+// raster radius fields name. The configured worlds and rasters are immutable
+// after start, so every request thread reads them without locking; inline
+// raster worlds are remembered in a small locked cache (below).
 #pragma once
 
 #include <grpcpp/support/status.h>
 
+#include <deque>
 #include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
+#include "raster_catalog.h"
 #include "scallop/plane/world.h"
 #include "scallop/v1/scallop.pb.h"
+#include "world_messages.h"
 
 namespace scallop::server {
 
@@ -21,11 +27,15 @@ struct ResolvedWorld {
 
 class WorldRegistry {
  public:
-  WorldRegistry(std::map<std::string, World> worlds, std::string default_name)
-      : worlds_(std::move(worlds)), default_name_(std::move(default_name)) {}
+  WorldRegistry(std::map<std::string, World> worlds, std::string default_name,
+                RasterCatalog rasters = {})
+      : worlds_(std::move(worlds)),
+        default_name_(std::move(default_name)),
+        rasters_(std::move(rasters)) {}
 
   // The request's world: INVALID_ARGUMENT naming the world.* field for a bad
-  // inline world, NOT_FOUND naming world_name for an unknown name.
+  // inline world (an unknown raster name included), NOT_FOUND naming
+  // world_name for an unknown name.
   template <typename Request>
   grpc::Status Resolve(const Request& request, ResolvedWorld& resolved) const {
     switch (request.world_choice_case()) {
@@ -38,10 +48,24 @@ class WorldRegistry {
     }
   }
 
+  // The world as answers carry it: a raster field by its name and pixel hash.
+  v1::World ToMessage(const World& world) const {
+    return scallop::WorldToMessage(world, &rasters_);
+  }
+
   const std::string& default_name() const { return default_name_; }
   std::vector<std::string> names() const;
+  const std::map<std::string, World>& worlds() const { return worlds_; }
+  const RasterCatalog& rasters() const { return rasters_; }
   // A stable text of every configured world, for deriving the page-token key.
   std::string Fingerprint() const;
+
+  // Inline raster worlds remembered: building one reads every pixel (its
+  // slope bound and mask table, O(pixels), tens of milliseconds for a large
+  // raster), so a client sending the same world again skips that. At most
+  // this many, the oldest forgotten first; each shares its raster's pixels
+  // and holds its own mask table (up to 64 MiB for a 2^24-pixel raster).
+  static constexpr size_t kInlineRasterWorlds = 8;
 
  private:
   grpc::Status ResolveInline(const v1::World& message, ResolvedWorld& resolved) const;
@@ -49,6 +73,11 @@ class WorldRegistry {
 
   std::map<std::string, World> worlds_;
   std::string default_name_;
+  RasterCatalog rasters_;
+  // Serialized message -> world, and the keys oldest first.
+  mutable std::mutex inline_mutex_;
+  mutable std::map<std::string, World> inline_rasters_;
+  mutable std::deque<std::string> inline_order_;
 };
 
 }  // namespace scallop::server

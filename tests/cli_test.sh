@@ -218,4 +218,110 @@ expect_bad_argument "last sample" noise --rect 4294967000,0,4294967592,296 --siz
 expect_bad_argument "PNG" noise --rect 0,0,8,8 --size 8x8 --png "$work/no/such/dir/x.png"
 expect_exit 2 noise --rect 0,0,8,8 --size 8x8
 
+# --- Radius fields: options, columns, pictures and errors -----------------
+
+make_png() { python3 "$(dirname "$0")/make_gray_png.py" "$@"; }
+# in_range FILE COLUMN LOW HIGH: every row's COLUMN (after the header) lies in [LOW, HIGH].
+in_range() {
+  awk -F, -v c="$2" -v lo="$3" -v hi="$4" 'NR > 1 && ($c < lo || $c > hi) { bad = 1 }
+    END { exit bad }' "$1"
+}
+
+expect_exit 0 generate --radius-noise 1,4,0.02 --domain 0,0,40,40 --seed 5
+check "generate noise: CSV header is x,y,r" test "$(head -n 1 "$work/out")" = "x,y,r"
+check "generate noise: points" test "$(wc -l <"$work/out")" -gt 50
+check "generate noise: r within [1, 4]" in_range "$work/out" 3 1 4
+cp "$work/out" "$work/noise.csv"
+expect_exit 0 generate --radius-noise 1,4,0.02 --domain 0,0,40,40 --seed 5 --radius-noise-seed 6
+check "generate noise: --radius-noise-seed changes the field" \
+  bash -c "! cmp -s '$work/out' '$work/noise.csv'"
+expect_exit 0 generate --radius-noise 1,4,0.02 --domain 0,0,40,40 --seed 5 --format svg
+circles=$(grep -c '<circle ' "$work/out" || true)
+check "generate noise SVG: a disk per point" test "$circles" = "$(($(wc -l <"$work/noise.csv") - 1))"
+half=$(sed -n 2p "$work/noise.csv" | awk -F, '{ printf "%.6g", $3 / 2 }')
+drawn=$(grep -m1 -oE 'r="[^"]+"' "$work/out" | head -n 1 | sed -E 's/r="([^"]+)"/\1/' |
+  awk '{ printf "%.6g", $1 }')
+check "generate noise SVG: the first disk is R/2 ($drawn vs $half)" test "$drawn" = "$half"
+expect_exit 0 generate --radius-noise 1,4,0.02 --domain 0,0,20,20 --format none --stats
+check "generate noise --stats: names the field" grep -q '^field noise$' "$work/err"
+
+# A raster whose column 0 is masked: 6 x 4 pixels of side 5 from (-10, 0).
+make_png "$work/masked.png" masked 6 4
+raster=(--radius-raster "$work/masked.png" --raster-origin -10,0 --raster-pixel 5 --radius-range 1,2)
+expect_exit 0 generate "${raster[@]}" --domain -10,0,20,20 --seed 2
+check "generate raster: CSV header is x,y,r" test "$(head -n 1 "$work/out")" = "x,y,r"
+check "generate raster: r within [1, 2]" in_range "$work/out" 3 1 2
+check "generate raster: no point in the masked column x < -5" in_range "$work/out" 1 -5 20
+check "generate raster: points beside the mask" \
+  awk -F, 'NR > 1 && $1 < 0 { found = 1 } END { exit !found }' "$work/out"
+make_png "$work/ramp16.png" ramp16 4 4
+expect_exit 0 generate --radius-raster "$work/ramp16.png" --raster-pixel 10 --radius-range 1,2 \
+  --domain 0,0,40,40
+check "generate 16-bit raster: r within [1, 2]" in_range "$work/out" 3 1 2
+
+expect_exit 0 plane --radius-noise 1,4,0.02 --rect -10,-10,10,10
+check "plane noise: CSV header is id,x,y,r" test "$(head -n 1 "$work/out")" = "id,x,y,r"
+check "plane noise: r within [1, 4]" in_range "$work/out" 4 1 4
+expect_exit 0 plane --radius-noise 1,4,0.02 --rect -10,-10,10,10 --format json
+check "plane noise JSON: has r" grep -qF '"r":[' "$work/out"
+expect_exit 0 plane "${raster[@]}" --rect -10,0,20,20
+check "plane raster: CSV header is id,x,y,r" test "$(head -n 1 "$work/out")" = "id,x,y,r"
+
+# verify judges a field world by the max rule, masks included.
+expect_exit 0 verify --radius-noise 1,3,0.02 --seed 4 --rect -20,-20,20,20
+check "verify noise world: field conflicts 0" grep -qE '^field conflicts +0 ' "$work/out"
+check "verify noise world: pass" grep -qE '^result +pass$' "$work/out"
+expect_exit 0 verify "${raster[@]}" --rect -10,0,20,20 --json
+check "verify raster world --json: field passed" grep -qF '"passed":true,"points_masked":0' "$work/out"
+
+# analyze with a field: rho per band of R, conflicts against R, the points over the field.
+expect_exit 0 analyze --radius-noise 1,4,0.02 --domain 0,0,60,60 --sets 2 --bands 3 --json \
+  --png "$work/field.png"
+check "analyze field: no conflict" grep -qF '"conflicts":0' "$work/out"
+check "analyze field: 3 bands" test "$(grep -oF '"nearest_ratio_mean"' "$work/out" | wc -l)" = 4
+check "analyze field: rho near maximal packing" \
+  python3 -c "import json,sys; r=json.load(open('$work/out'))['all']['rho']; sys.exit(not 0.75 < r < 0.95)"
+check "analyze field --png: a PNG" test "$(head -c 4 "$work/field.png" | tail -c 3)" = PNG
+# A file of x,y,r rows with a conflict planted: two points 0.5 apart where R >= 1.
+printf 'x,y,r\n10,10,1\n10.5,10,1\n30,30,1\n' >"$work/planted.csv"
+expect_exit 0 analyze --radius-noise 1,4,0.02 --input "$work/planted.csv" --rect 0,0,40,40 --json
+check "analyze field --input: the planted conflict is found" grep -qF '"conflicts":1' "$work/out"
+expect_exit 0 analyze --radius-noise 1,4,0.02 --input "$work/noise.csv" --rect 0,0,40,40 --json
+check "analyze field --input: generate's x,y,r file has no conflict" grep -qF '"conflicts":0' "$work/out"
+expect_bad_argument "--bands" analyze --radius-noise 1,4,0.02 --domain 0,0,20,20 --bands 0
+
+# Bad fields: exit 2, the option named (and the core's field where it judged).
+expect_bad_argument "--radius-noise: field.frequency" generate --radius-noise 1,4,0.5
+expect_bad_argument "--radius-noise: field.r_min" generate --radius-noise 0,4,0.02
+expect_bad_argument "--radius-noise: field.r_min" generate --radius-noise -1,4,0.02
+expect_bad_argument "--radius-noise: values must be finite" generate --radius-noise nan,4,0.02
+expect_bad_argument "--radius-noise: field.r_max" generate --radius-noise 1,101,0.0001
+expect_bad_argument "--radius-noise: field.r_max" generate --radius-noise 2,1,0.01
+expect_bad_argument "--radius-noise: field.octaves" generate --radius-noise 1,2,0.01,9
+expect_bad_argument "--radius-noise: expected" generate --radius-noise 1,2
+expect_bad_argument "--radius-noise-seed" generate --radius-noise 1,2,0.01 --radius-noise-seed x
+expect_bad_argument "--algorithm" generate --radius-noise 1,2,0.01 --algorithm a1
+expect_bad_argument "--torus" generate --radius-noise 1,2,0.01 --torus
+expect_bad_argument "--radius-raster: raster.path" generate --radius-raster "$work/none.png" --radius-range 1,2
+printf 'not a png' >"$work/text.png"
+expect_bad_argument "--radius-raster: raster.path" generate --radius-raster "$work/text.png" --radius-range 1,2
+make_png "$work/rgb.png" rgb 4 4
+expect_bad_argument "--radius-raster: raster:" generate --radius-raster "$work/rgb.png" --radius-range 1,2
+make_png "$work/wide.png" ramp 20000 1
+expect_bad_argument "16384" generate --radius-raster "$work/wide.png" --radius-range 1,2
+# Steps of 4 levels in 254 of a range of 1: 0.0157 a pixel, too steep at 0.02 a pixel.
+expect_bad_argument "--raster-pixel: raster.pixel_size" \
+  generate --radius-raster "$work/masked.png" --raster-pixel 0.02 --radius-range 1,2
+expect_bad_argument "--radius-range: field.r_min" \
+  generate --radius-raster "$work/masked.png" --raster-pixel 5 --radius-range 0,2
+expect_bad_argument "--raster-origin" generate "${raster[@]/-10,0/x,0}"
+expect_exit 2 generate --radius-noise 1,2,0.01 --min-distance 2
+expect_exit 2 generate --radius-noise 1,2,0.01 --radius-raster "$work/masked.png" --radius-range 1,2
+expect_exit 2 generate --radius-raster "$work/masked.png"
+expect_exit 2 generate --radius-range 1,2
+for command in plane verify; do
+  expect_bad_argument "--radius-noise: field.frequency" $command --rect 0,0,8,8 --radius-noise 1,4,0.5
+  expect_bad_argument "--algorithm" $command --rect 0,0,8,8 --radius-noise 1,2,0.01 --algorithm a2
+done
+
 report cli_test

@@ -32,3 +32,20 @@ report() {
   echo "$1: $passed passed, $failed failed"
   [ "$failed" -eq 0 ]
 }
+# start_scallopd NAME ARGS...: starts $scallopd ARGS in the background (ARGS must make it
+# listen on port 0), its stdout through a FIFO and its log in $work/NAME.log; reads the address
+# it prints into $address and its pid into $started_pid, then waits until `$scallop info`
+# answers there. Needs $scallopd and $scallop.
+start_scallopd() {
+  local name=$1 line
+  shift
+  mkfifo "$work/$name.address"
+  "$scallopd" "$@" >"$work/$name.address" 2>"$work/$name.log" &
+  started_pid=$!
+  read -r line <"$work/$name.address"
+  address=${line#scallopd listening on }
+  for _ in $(seq 100); do
+    "$scallop" info --server "$address" >/dev/null 2>&1 && break
+    sleep 0.1
+  done
+}

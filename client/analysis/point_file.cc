@@ -24,9 +24,12 @@ StatusOr<std::vector<Vec2>> ReadCsv(std::istream& in, const std::string& path) {
   std::string line;
   if (!std::getline(in, line)) return InvalidArgument(path + ": empty file");
   if (!line.empty() && line.back() == '\r') line.pop_back();
-  const bool with_ids = line == "id,x,y";
-  if (!with_ids && line != "x,y") {
-    return InvalidArgument(path + ": line 1: expected the header x,y or id,x,y");
+  // A field world's files carry r last; the points are what is analysed.
+  const std::string header = line;
+  const bool with_ids = header.starts_with("id,");
+  const bool with_radii = header.ends_with(",r");
+  if (header != "x,y" && header != "id,x,y" && header != "x,y,r" && header != "id,x,y,r") {
+    return InvalidArgument(path + ": line 1: expected the header x,y, id,x,y, x,y,r or id,x,y,r");
   }
   std::vector<Vec2> points;
   for (int64_t number = 2; std::getline(in, line); ++number) {
@@ -35,12 +38,13 @@ StatusOr<std::vector<Vec2>> ReadCsv(std::istream& in, const std::string& path) {
     std::vector<std::string> fields;
     std::stringstream row(line);
     for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
-    const size_t want = with_ids ? 3 : 2;
+    const size_t x = with_ids ? 1 : 0;
+    const size_t want = x + 2 + (with_radii ? 1 : 0);
     Vec2 p;
-    if (fields.size() != want || !ParseFinite(fields[want - 2], &p.x) ||
-        !ParseFinite(fields[want - 1], &p.y)) {
-      return InvalidArgument(path + ": line " + std::to_string(number) + ": expected " +
-                             (with_ids ? "id,x,y" : "x,y") + " with finite x and y");
+    if (fields.size() != want || !ParseFinite(fields[x], &p.x) ||
+        !ParseFinite(fields[x + 1], &p.y)) {
+      return InvalidArgument(path + ": line " + std::to_string(number) + ": expected " + header +
+                             " with finite x and y");
     }
     points.push_back(p);
   }

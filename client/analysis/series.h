@@ -34,6 +34,7 @@ struct AnalyzeArguments {
   bool dart_exhaustive = false;
   std::string png, plot;
   bool json = false;
+  int bands = 4;  // with a radius field (world.field): bands of R the statistics are split by
 };
 
 // One set to analyse: the points inside the window and the verifier's report.

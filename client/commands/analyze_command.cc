@@ -9,11 +9,16 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "client/analysis/field_analysis.h"
 #include "client/analysis/periodogram_image.h"
+#include "client/analysis/point_file.h"
 #include "client/analysis/series.h"
 #include "client/analysis/svg_plot.h"
 #include "client/commands/command_exit.h"
 #include "client/commands/commands.h"
+#include "client/options/rect_option.h"
+#include "scallop/plane/plane_engine.h"
+#include "scallop/sampling/field_sampler.h"
 
 namespace scallop::cli {
 namespace {
@@ -147,7 +152,135 @@ Status WritePlot(const std::string& path, const std::vector<SeriesResult>& resul
   return Status::Ok();
 }
 
+nlohmann::json BandJson(const FieldBand& band) {
+  return {{"r", {band.r_lo, band.r_hi}},
+          {"area", band.area},
+          {"points", band.points},
+          {"rho", band.Rho()},
+          {"nearest_ratio_mean", band.NearestRatio()}};
+}
+
+// A radius field's sets (the field sampler on --domain, a world on --rect, or --input files),
+// judged against the field: rho and nearest neighbours per band of R, conflicts, pair
+// distances over max(R(p), R(q)); --png: the first set over the field.
+int RunFieldAnalyze(const AnalyzeArguments& arguments, const RadiusFieldSpec& spec) {
+  const auto bad = [](const Status& status) { return ReportBadArguments("analyze", status); };
+  StatusOr<RadiusField> field = RadiusField::Create(spec);
+  if (!field.ok()) return bad(field.status());
+  if (arguments.bands < 1 || arguments.bands > 64) {
+    return bad(
+        InvalidArgument("--bands: must be in 1..64, got " + std::to_string(arguments.bands)));
+  }
+  if (arguments.sets < 1 || arguments.sets > 1000) {
+    return bad(InvalidArgument("--sets: must be in 1..1000 with a radius field"));
+  }
+  if (!arguments.plot.empty()) return bad(InvalidArgument("--plot: not with a radius field"));
+  if (arguments.torus) return bad(InvalidArgument("--torus: a radius field samples rectangles"));
+  if (Status status = CheckFieldAlgorithm(arguments.world.field, arguments.algorithms.size() == 1
+                                                                     ? arguments.algorithms[0]
+                                                                     : "several");
+      !status.ok()) {
+    return bad(status);
+  }
+  StatusOr<uint64_t> seed = ParseSeed(arguments.world.seed);
+  if (!seed.ok()) return bad(seed.status());
+  const int sources = !arguments.inputs.empty() + !arguments.domain.empty() +
+                      (!arguments.rects.empty() && arguments.inputs.empty());
+  if (sources != 1) {
+    return bad(InvalidArgument("--input, --domain or --rect: give one source of points"));
+  }
+  std::vector<std::vector<Vec2>> sets;
+  Rect window;
+  if (!arguments.inputs.empty()) {
+    for (const std::string& path : arguments.inputs) {
+      StatusOr<std::vector<Vec2>> points = ReadPointFile(path);
+      if (!points.ok()) return bad(points.status());
+      sets.push_back(std::move(*points));
+    }
+    if (arguments.rects.size() != 1) {
+      return bad(InvalidArgument("--rect: give the window the --input points cover"));
+    }
+  }
+  const std::string window_text = !arguments.domain.empty() ? arguments.domain
+                                  : arguments.rects.empty() ? ""
+                                                            : arguments.rects.front();
+  StatusOr<Rect> parsed = ParseRect(window_text, arguments.domain.empty() ? "--rect" : "--domain");
+  if (!parsed.ok()) return bad(parsed.status());
+  window = *parsed;
+  if (!arguments.domain.empty()) {
+    for (int s = 0; s < arguments.sets; ++s) {
+      StatusOr<std::vector<Vec2>> points =
+          SampleField({.domain = window, .seed = *seed + static_cast<uint64_t>(s)}, *field);
+      if (!points.ok()) return bad(points.status());
+      sets.push_back(std::move(*points));
+    }
+  } else if (arguments.inputs.empty()) {
+    StatusOr<World> world = World::Create({.seed = *seed, .radius_field = spec});
+    if (!world.ok()) return bad(world.status());
+    StatusOr<PlaneEngineOptions> engine_options = ParseEngineOptions(arguments.world);
+    if (!engine_options.ok()) return bad(engine_options.status());
+    PlaneEngine engine(*engine_options);
+    for (int s = 0; s < arguments.sets; ++s) {
+      StatusOr<PlanePoints> points =
+          engine.Points(world->WithSeed(*seed + static_cast<uint64_t>(s)), window);
+      if (!points.ok()) return bad(points.status());
+      sets.push_back(std::move(points->positions));
+    }
+  }
+  FieldStatistics statistics;
+  for (const std::vector<Vec2>& points : sets) {
+    AddFieldStatistics(points, *field, window, arguments.bands, statistics);
+  }
+  if (!arguments.png.empty()) {
+    if (Status status =
+            WritePng(arguments.png, RenderPointsOverField(sets.front(), *field, window, 800));
+        !status.ok()) {
+      std::cerr << "scallop analyze: --png: " << status.message() << '\n';
+      return 1;
+    }
+  }
+  if (arguments.json) {
+    nlohmann::json bands = nlohmann::json::array();
+    for (const FieldBand& band : statistics.bands) bands.push_back(BandJson(band));
+    std::vector<double> ratios;
+    for (size_t b = 0; b < statistics.pair_ratio_counts.size(); ++b) {
+      ratios.push_back((b + 0.5) * kPairRatioStep);
+    }
+    std::cout << nlohmann::json{{"field", RadiusFieldKindName(field->kind())},
+                                {"r_min", field->r_min()},
+                                {"r_max", field->r_max()},
+                                {"window", {window.x0, window.y0, window.x1, window.y1}},
+                                {"sets", sets.size()},
+                                {"all", BandJson(statistics.all)},
+                                {"bands", bands},
+                                {"conflicts", statistics.conflicts},
+                                {"smallest_pair_ratio", statistics.smallest_ratio},
+                                {"pair_ratio",
+                                 {{"ratio", ratios},
+                                  {"neighbours_per_point", statistics.PairRatioPerPoint()}}}}
+                     .dump()
+              << '\n';
+    return 0;
+  }
+  std::cout << std::setprecision(5) << RadiusFieldKindName(field->kind()) << " field, R in ["
+            << field->r_min() << ", " << field->r_max() << "], " << sets.size() << " sets\n"
+            << "  all: " << statistics.all.points << " points, rho " << statistics.all.Rho()
+            << " (normalised by local R), nearest neighbour " << statistics.all.NearestRatio()
+            << " max(R)\n"
+            << "  conflicts " << statistics.conflicts << ", smallest pair "
+            << statistics.smallest_ratio << " max(R)\n";
+  for (const FieldBand& band : statistics.bands) {
+    std::cout << "  R in [" << band.r_lo << ", " << band.r_hi << "): " << band.points
+              << " points, area " << band.area << ", rho " << band.Rho() << ", nearest "
+              << band.NearestRatio() << " max(R)\n";
+  }
+  return 0;
+}
+
 int RunAnalyze(const AnalyzeArguments& arguments) {
+  StatusOr<std::optional<RadiusFieldSpec>> field = ParseLocalField(arguments.world.field);
+  if (!field.ok()) return ReportBadArguments("analyze", field.status());
+  if (field->has_value()) return RunFieldAnalyze(arguments, **field);
   StatusOr<std::vector<SeriesPlan>> plans = PlanSeries(arguments);
   if (!plans.ok()) return ReportBadArguments("analyze", plans.status());
   if (!arguments.plot.empty() &&
@@ -232,7 +365,14 @@ CommandRunner RegisterAnalyze(CLI::App& app) {
                       "cycles per d, at most 256)");
   command->add_flag("--dart-exhaustive", arguments->dart_exhaustive,
                     "dart: run until no spot is left (maximal)");
-  command->add_option("--png", arguments->png, "Write the periodogram(s), side by side, as PNG");
+  AddFieldOptions(*command, arguments->world.field);
+  command
+      ->add_option("--bands", arguments->bands,
+                   "With a radius field: bands of R (geometric) the statistics are split by")
+      ->capture_default_str();
+  command->add_option("--png", arguments->png,
+                      "Write the periodogram(s), side by side, as PNG; with a radius field, the "
+                      "first set's points over the field");
   command->add_option("--plot", arguments->plot, "Write radial power and anisotropy as SVG");
   command->add_flag("--json", arguments->json, "Print the numbers as JSON instead of text");
   input->excludes(domain);

@@ -14,6 +14,7 @@
 #include "client/commands/commands.h"
 #include "client/options/rect_option.h"
 #include "client/options/remote_options.h"
+#include "client/output/remote_points_output.h"
 #include "follow_client.h"
 
 namespace scallop::cli {
@@ -54,7 +55,7 @@ int RunFollow(const FollowArguments& arguments) {
   if (!connected.ok()) return ReportBadArguments("follow", connected.status());
   const client::ScallopClient& client = *connected;
   client::FollowSession session(client, CallOptionsFor(arguments.remote));
-  std::cout << std::setprecision(17) << "id,x,y\n";
+  IncrementalCsv csv(std::cout, first.world().has_radius_field());
   int64_t total_points = 0, total_bytes = 0;
   for (size_t step = 0; step < path->size(); ++step) {
     v1::FollowRequest request = step == 0 ? first : v1::FollowRequest();
@@ -66,11 +67,7 @@ int RunFollow(const FollowArguments& arguments) {
       ++messages;
       bytes += static_cast<int64_t>(response.ByteSizeLong());
       evicted += response.evicted_size();
-      const v1::Points& p = response.chunk().points();
-      for (int k = 0; k < p.xs_size() && k < p.ys_size() && k < p.ids_size(); ++k) {
-        std::cout << p.ids(k) << ',' << p.xs(k) << ',' << p.ys(k) << '\n';
-        ++points;
-      }
+      points += csv.Write(response.chunk().points());
     });
     const double milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -85,6 +82,7 @@ int RunFollow(const FollowArguments& arguments) {
   if (grpc::Status status = session.Finish(); !status.ok()) {
     return ReportCallFailure("follow", status);
   }
+  csv.Finish();
   std::cerr << "total: " << path->size() << " steps, " << total_points << " points, " << total_bytes
             << " bytes\n";
   return 0;

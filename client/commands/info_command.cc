@@ -16,7 +16,7 @@ struct InfoArguments {
   WorldArguments world;
   RemoteArguments remote;
   bool json = false;
-  bool inline_world = false;  // any of --seed, --min-distance, --algorithm, --density given
+  bool inline_world = false;  // any of the inline world's options given
 };
 
 int RunInfo(const InfoArguments& arguments) {
@@ -46,6 +46,16 @@ int RunInfo(const InfoArguments& arguments) {
   }
   const v1::Limits& limits = info.limits();
   const std::vector<std::string> names(info.world_names().begin(), info.world_names().end());
+  const std::vector<std::string> descriptions(info.world_descriptions().begin(),
+                                              info.world_descriptions().end());
+  nlohmann::json rasters = nlohmann::json::array();
+  for (const v1::RasterInfo& raster : info.rasters()) {
+    rasters.push_back({{"name", raster.name()},
+                       {"width", raster.width()},
+                       {"height", raster.height()},
+                       {"bit_depth", raster.bit_depth()},
+                       {"pixel_hash", raster.pixel_hash()}});
+  }
   if (arguments.json) {
     const nlohmann::json document{{"serving", serving},
                                   {"generator_version", info.generator_version()},
@@ -67,12 +77,17 @@ int RunInfo(const InfoArguments& arguments) {
                                     {"follow_idle_seconds", limits.follow_idle_seconds()}}},
                                   {"default_world", info.default_world()},
                                   {"worlds", names},
+                                  {"world_descriptions", descriptions},
+                                  {"rasters", rasters},
                                   {"world",
                                    {{"name", world.name()},
                                     {"description", world.description()},
                                     {"region_side", world.region_side()},
                                     {"precision_limit", world.precision_limit()},
-                                    {"fingerprint", world.fingerprint()}}}};
+                                    {"fingerprint", world.fingerprint()},
+                                    {"field_kind", world.field_kind()},
+                                    {"r_min", world.r_min()},
+                                    {"r_max", world.r_max()}}}};
     std::cout << document.dump() << '\n';
     return 0;
   }
@@ -97,11 +112,20 @@ int RunInfo(const InfoArguments& arguments) {
             << "default world       " << info.default_world() << '\n'
             << "worlds             ";
   for (const std::string& name : names) std::cout << ' ' << name;
-  std::cout << '\n'
-            << "world               " << (world.name().empty() ? "(inline)" : world.name()) << ": "
+  std::cout << '\n';
+  for (const v1::RasterInfo& raster : info.rasters()) {
+    std::cout << "raster              " << raster.name() << ": " << raster.width() << " x "
+              << raster.height() << ", " << raster.bit_depth() << " bit, pixel hash " << std::hex
+              << raster.pixel_hash() << std::dec << '\n';
+  }
+  std::cout << "world               " << (world.name().empty() ? "(inline)" : world.name()) << ": "
             << world.description() << '\n'
             << "  region side       " << world.region_side() << '\n'
             << "  precision limit   " << world.precision_limit() << '\n';
+  if (world.field_kind() != "constant") {
+    std::cout << "  radius field      " << world.field_kind() << ", R in [" << world.r_min() << ", "
+              << world.r_max() << "]; limits in units of r_min\n";
+  }
   return 0;
 }
 
@@ -114,7 +138,8 @@ CommandRunner RegisterInfo(CLI::App& app) {
   AddRemoteOptions(*command, arguments->remote);
   command->add_flag("--json", arguments->json, "Print one JSON object");
   return [arguments, command] {
-    for (const char* option : {"--seed", "--min-distance", "--algorithm", "--density"}) {
+    for (const char* option : {"--seed", "--min-distance", "--algorithm", "--density",
+                               "--radius-noise", "--radius-raster"}) {
       if (command->count(option) > 0) arguments->inline_world = true;
     }
     return RunInfo(*arguments);

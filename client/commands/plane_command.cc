@@ -26,10 +26,12 @@ int RunPlane(const PlaneArguments& arguments) {
   // Points runs PlaneEngine::ValidateQuery first, so bad rectangles end here.
   StatusOr<PlanePoints> points = engine.Points(query->world, query->rect);
   if (!points.ok()) return ReportBadArguments("plane", points.status());
-  const double d = query->world.min_distance();
-  const SvgStyle style{.seam_spacing = arguments.seams ? RegionLayout(d).side() : 0.0,
-                       .dot_radius = d / 2};
-  WritePoints(std::cout, arguments.format, points->positions, points->ids, query->rect, style);
+  const World& world = query->world;
+  // Seams every region side (16 d; a field world's 6 r_max).
+  const SvgStyle style{.seam_spacing = arguments.seams ? RegionLayout(world).side() : 0.0,
+                       .dot_radius = world.min_distance() / 2};
+  WritePoints(std::cout, arguments.format, points->positions, points->ids,
+              RadiiAt(world.radius_field(), points->positions), query->rect, style);
   return 0;
 }
 

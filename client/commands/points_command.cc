@@ -33,11 +33,12 @@ int RunPoints(const PointsArguments& arguments) {
   client::ScallopClient& client = *connected;
   const client::CallOptions options = CallOptionsFor(arguments.remote);
   PlanePoints points;
-  if (grpc::Status status = client.GetAllPoints(request, points, options); !status.ok()) {
+  std::vector<double> radii;
+  if (grpc::Status status = client.GetAllPoints(request, points, options, &radii); !status.ok()) {
     return ReportCallFailure("points", status);
   }
   if (grpc::Status status = WriteRemotePoints(client, request, options, arguments.format,
-                                              arguments.seams, points, std::cout);
+                                              arguments.seams, points, radii, std::cout);
       !status.ok()) {
     return ReportCallFailure("points", status);
   }

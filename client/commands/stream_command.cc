@@ -1,7 +1,6 @@
 // `scallop stream`: a rectangle of a world from scallopd's StreamPoints. CSV is
 // written chunk by chunk as it arrives, so memory stays bounded; JSON and SVG
 // are whole documents and are written at the end.
-#include <iomanip>
 #include <iostream>
 #include <memory>
 
@@ -33,30 +32,30 @@ int RunStream(const StreamArguments& arguments) {
   client::ScallopClient& client = *connected;
   const client::CallOptions options = CallOptionsFor(arguments.remote);
   PlanePoints points;
+  std::vector<double> radii;
   const bool incremental_csv = arguments.format == PointFormat::kCsv;
-  // The same text as WritePoints' CSV: a header, then id,x,y with 17 digits.
-  if (incremental_csv) std::cout << std::setprecision(17) << "id,x,y\n";
+  IncrementalCsv csv(std::cout, request.world().has_radius_field());
   Status malformed;
   const grpc::Status status = client.StreamPoints(
       request,
       [&](const v1::PointsChunk& chunk) {
         if (!incremental_csv) {
-          malformed = ReadPoints(chunk.points(), points);
+          malformed = ReadPoints(chunk.points(), points, &radii);
           return malformed.ok();
         }
-        const v1::Points& p = chunk.points();
-        for (int k = 0; k < p.xs_size() && k < p.ys_size() && k < p.ids_size(); ++k) {
-          std::cout << p.ids(k) << ',' << p.xs(k) << ',' << p.ys(k) << '\n';
-        }
+        csv.Write(chunk.points());
         return true;
       },
       options);
   if (!status.ok()) return ReportCallFailure("stream", status);
   if (!malformed.ok())
     return ReportCallFailure("stream", {grpc::StatusCode::INTERNAL, malformed.message()});
-  if (incremental_csv) return 0;
+  if (incremental_csv) {
+    csv.Finish();
+    return 0;
+  }
   if (grpc::Status written = WriteRemotePoints(client, request, options, arguments.format,
-                                               arguments.seams, points, std::cout);
+                                               arguments.seams, points, radii, std::cout);
       !written.ok()) {
     return ReportCallFailure("stream", written);
   }

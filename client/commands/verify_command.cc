@@ -34,17 +34,40 @@ nlohmann::json Measured(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
-void WriteJsonReport(std::ostream& out, const WorldQuery& query, const VerifyReport& report) {
-  const World& world = query.world;
-  const double d = world.min_distance();
-  const nlohmann::json document{
-      {"world",
-       {{"seed", world.seed()},
-        {"min_distance", d},
-        {"algorithm", WorldAlgorithmName(world.algorithm())},
-        {"density", world.density()},
-        {"generator_version", world.generator_version()}}},
-      {"rect", {query.rect.x0, query.rect.y0, query.rect.x1, query.rect.y1}},
+// The world as the report names it: from the World locally, from the answer's message remotely
+// (where a raster field's pixels are the server's, so no World can be made of it).
+struct VerifiedWorld {
+  std::string description;
+  nlohmann::json json;
+  double d = 1.0;
+};
+
+VerifiedWorld VerifiedWorldOf(const World& world) {
+  return {world.Describe(),
+          {{"seed", world.seed()},
+           {"min_distance", world.min_distance()},
+           {"algorithm", WorldAlgorithmName(world.algorithm())},
+           {"density", world.density()},
+           {"generator_version", world.generator_version()}},
+          world.min_distance()};
+}
+
+nlohmann::json FieldJson(const FieldVerifyReport& field) {
+  return {{"conflicts", field.conflicts},
+          {"min_spacing_ratio", Measured(field.min_spacing_ratio)},
+          {"largest_gap", Measured(field.largest_gap)},
+          {"largest_gap_spot", {field.largest_gap_spot.x, field.largest_gap_spot.y}},
+          {"gap_bound", Measured(field.gap_bound)},
+          {"points_masked", field.points_masked},
+          {"passed", field.passed()}};
+}
+
+void WriteJsonReport(std::ostream& out, const VerifiedWorld& world, const Rect& rect,
+                     const VerifyReport& report) {
+  const double d = world.d;
+  nlohmann::json document{
+      {"world", world.json},
+      {"rect", {rect.x0, rect.y0, rect.x1, rect.y1}},
       {"points_checked", report.points_checked},
       {"pairs_checked", report.pairs_checked},
       {"pairs_across_seams", report.pairs_across_seams},
@@ -60,6 +83,7 @@ void WriteJsonReport(std::ostream& out, const WorldQuery& query, const VerifyRep
       {"spacing_ok", report.spacing_ok},
       {"maximal_ok", report.maximal_ok},
       {"passed", report.passed()}};
+  if (report.field) document["field"] = FieldJson(*report.field);
   out << document.dump() << '\n';
 }
 
@@ -72,11 +96,11 @@ std::string WithRatio(double value, double d) {
   return text.str();
 }
 
-void WriteTextReport(std::ostream& out, const WorldQuery& query, const VerifyReport& report) {
-  const double d = query.world.min_distance();
-  const Rect& r = query.rect;
+void WriteTextReport(std::ostream& out, const VerifiedWorld& world, const Rect& r,
+                     const VerifyReport& report) {
+  const double d = world.d;
   out << std::setprecision(12);
-  out << "world                      " << query.world.Describe() << '\n'
+  out << "world                      " << world.description << '\n'
       << "rect                       " << r.x0 << ',' << r.y0 << ',' << r.x1 << ',' << r.y1 << '\n'
       << "points checked             " << report.points_checked << '\n'
       << "pairs checked              " << report.pairs_checked << '\n'
@@ -88,8 +112,16 @@ void WriteTextReport(std::ostream& out, const WorldQuery& query, const VerifyRep
       << "spacing                    " << (report.spacing_ok ? "ok" : "FAILED") << " ("
       << report.spacing_violations << " violations, " << report.spacing_violations_across_seams
       << " across seams)\n"
-      << "maximality                 " << (report.maximal_ok ? "ok" : "FAILED") << '\n'
-      << "result                     " << (report.passed() ? "pass" : "FAIL") << '\n';
+      << "maximality                 " << (report.maximal_ok ? "ok" : "FAILED") << '\n';
+  if (report.field) {
+    const FieldVerifyReport& field = *report.field;
+    out << "field conflicts            " << field.conflicts << " (smallest |p-q| / max R "
+        << field.min_spacing_ratio << ")\n"
+        << "field largest gap          " << field.largest_gap << " at (" << field.largest_gap_spot.x
+        << ", " << field.largest_gap_spot.y << "), certified below " << field.gap_bound << '\n'
+        << "points in masks            " << field.points_masked << '\n';
+  }
+  out << "result                     " << (report.passed() ? "pass" : "FAIL") << '\n';
 }
 
 // The server's report in the core's shape, so both paths print alike.
@@ -107,6 +139,19 @@ VerifyReport ReportFromMessage(const v1::VerifyResponse& response) {
   report.spacing_violations_across_seams = response.spacing_violations_across_seams();
   report.spacing_ok = response.spacing_ok();
   report.maximal_ok = response.maximal_ok();
+  if (response.has_field()) {
+    const v1::FieldVerifyResponse& in = response.field();
+    FieldVerifyReport field;
+    field.conflicts = in.conflicts();
+    field.min_spacing_ratio = in.min_spacing_ratio();
+    field.largest_gap = in.largest_gap();
+    field.largest_gap_spot = {in.largest_gap_x(), in.largest_gap_y()};
+    field.gap_bound = in.gap_bound();
+    field.points_masked = in.points_masked();
+    field.conflict_ok = in.conflicts() == 0;
+    field.maximal_ok = response.maximal_ok();
+    report.field = field;
+  }
   return report;
 }
 
@@ -125,16 +170,27 @@ int RunRemoteVerify(const VerifyArguments& arguments) {
       !status.ok()) {
     return ReportCallFailure("verify", status);
   }
-  StatusOr<World> world = WorldFromMessage(response.world());
-  if (!world.ok()) {
-    return ReportCallFailure("verify", {grpc::StatusCode::INTERNAL, world.status().message()});
+  const v1::World& message = response.world();
+  VerifiedWorld world;
+  if (StatusOr<World> parsed = WorldFromMessage(message); parsed.ok()) {
+    world = VerifiedWorldOf(*parsed);
+  } else if (message.radius_field().has_raster()) {
+    // The raster is the server's: the world is named by its parameters and the raster's name.
+    world = {"seed=" + std::to_string(message.seed()) + " algorithm=a3 field=raster raster=" +
+                 message.radius_field().raster().raster_name(),
+             {{"seed", message.seed()},
+              {"min_distance", message.min_distance()},
+              {"raster_name", message.radius_field().raster().raster_name()}},
+             message.min_distance()};
+  } else {
+    return ReportCallFailure("verify", {grpc::StatusCode::INTERNAL, parsed.status().message()});
   }
-  WorldQuery query{.world = *world, .rect = RectFromMessage(request.rect()), .engine = {}};
+  const Rect rect = RectFromMessage(request.rect());
   const VerifyReport report = ReportFromMessage(response);
   if (arguments.json) {
-    WriteJsonReport(std::cout, query, report);
+    WriteJsonReport(std::cout, world, rect, report);
   } else {
-    WriteTextReport(std::cout, query, report);
+    WriteTextReport(std::cout, world, rect, report);
   }
   return response.passed() ? 0 : 1;
 }
@@ -149,10 +205,11 @@ int RunVerify(const VerifyArguments& arguments) {
   // first: failures there are the caller's, so exit 2.
   StatusOr<VerifyReport> report = VerifyWorldRect(engine, query->world, query->rect, kVerifyLimit);
   if (!report.ok()) return ReportBadArguments("verify", report.status());
+  const VerifiedWorld world = VerifiedWorldOf(query->world);
   if (arguments.json) {
-    WriteJsonReport(std::cout, *query, *report);
+    WriteJsonReport(std::cout, world, query->rect, *report);
   } else {
-    WriteTextReport(std::cout, *query, *report);
+    WriteTextReport(std::cout, world, query->rect, *report);
   }
   return report->passed() ? 0 : 1;
 }

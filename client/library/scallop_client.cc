@@ -56,11 +56,12 @@ grpc::Status ScallopClient::GetPoints(const v1::GetPointsRequest& request,
 }
 
 grpc::Status ScallopClient::GetAllPoints(v1::GetPointsRequest request, PlanePoints& points,
-                                         const CallOptions& options) {
+                                         const CallOptions& options, std::vector<double>* radii) {
   while (true) {
     v1::GetPointsResponse response;
     if (grpc::Status status = GetPoints(request, response, options); !status.ok()) return status;
-    if (grpc::Status status = FromCore(ReadPoints(response.points(), points)); !status.ok()) {
+    if (grpc::Status status = FromCore(ReadPoints(response.points(), points, radii));
+        !status.ok()) {
       return status;
     }
     if (response.next_page_token().empty()) return grpc::Status::OK;
@@ -88,12 +89,13 @@ grpc::Status ScallopClient::StreamPoints(
 }
 
 grpc::Status ScallopClient::StreamAllPoints(const v1::StreamPointsRequest& request,
-                                            PlanePoints& points, const CallOptions& options) {
+                                            PlanePoints& points, const CallOptions& options,
+                                            std::vector<double>* radii) {
   Status malformed;
   grpc::Status status = StreamPoints(
       request,
       [&](const v1::PointsChunk& chunk) {
-        malformed = ReadPoints(chunk.points(), points);
+        malformed = ReadPoints(chunk.points(), points, radii);
         return malformed.ok();
       },
       options);

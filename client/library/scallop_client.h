@@ -63,9 +63,10 @@ class ScallopClient {
                          const CallOptions& options = {});
 
   // Every point of request.rect, following next_page_token until the last page
-  // (request.page_token is the first page's). Points are appended to `points`.
+  // (request.page_token is the first page's). Points are appended to `points`,
+  // and for a field world their radii (R at each point) to `radii` if given.
   grpc::Status GetAllPoints(v1::GetPointsRequest request, PlanePoints& points,
-                            const CallOptions& options = {});
+                            const CallOptions& options = {}, std::vector<double>* radii = nullptr);
 
   // Reads a stream, calling on_chunk for each chunk in order. on_chunk returns
   // false to cancel the call (the result is then CANCELLED).
@@ -73,9 +74,10 @@ class ScallopClient {
                             const std::function<bool(const v1::PointsChunk&)>& on_chunk,
                             const CallOptions& options = {});
 
-  // Every chunk's points appended to `points`.
+  // Every chunk's points appended to `points` (and radii, as GetAllPoints).
   grpc::Status StreamAllPoints(const v1::StreamPointsRequest& request, PlanePoints& points,
-                               const CallOptions& options = {});
+                               const CallOptions& options = {},
+                               std::vector<double>* radii = nullptr);
 
   grpc::Status Verify(const v1::VerifyRequest& request, v1::VerifyResponse& response,
                       const CallOptions& options = {});

@@ -8,7 +8,9 @@
 
 namespace scallop::cli {
 
-StatusOr<Rect> ParseRect(const std::string& text, const std::string& option) {
+StatusOr<std::vector<double>> ParseNumbers(const std::string& text, const std::string& option,
+                                           size_t min_count, size_t max_count,
+                                           const std::string& form) {
   std::vector<double> values;
   std::stringstream stream(text);
   std::string part;
@@ -21,8 +23,16 @@ StatusOr<Rect> ParseRect(const std::string& text, const std::string& option) {
     if (!std::isfinite(value)) return InvalidArgument(option + ": values must be finite");
     values.push_back(value);
   }
-  if (values.size() != 4) return InvalidArgument(option + ": expected X0,Y0,X1,Y1");
-  const Rect rect{values[0], values[1], values[2], values[3]};
+  if (values.size() < min_count || values.size() > max_count) {
+    return InvalidArgument(option + ": expected " + form);
+  }
+  return values;
+}
+
+StatusOr<Rect> ParseRect(const std::string& text, const std::string& option) {
+  StatusOr<std::vector<double>> values = ParseNumbers(text, option, 4, 4, "X0,Y0,X1,Y1");
+  if (!values.ok()) return values.status();
+  const Rect rect{(*values)[0], (*values)[1], (*values)[2], (*values)[3]};
   if (!(rect.x0 < rect.x1)) return InvalidArgument(option + ": X0 must be less than X1");
   if (!(rect.y0 < rect.y1)) return InvalidArgument(option + ": Y0 must be less than Y1");
   return rect;

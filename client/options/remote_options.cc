@@ -12,13 +12,35 @@ void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server
   CLI::Option* world =
       command.add_option("--world", arguments.world_name, "A world configured on the server");
   if (server_optional) world->needs(server);
-  for (const char* inline_option : {"--seed", "--min-distance", "--algorithm", "--density"}) {
+  for (const char* inline_option : {"--seed", "--min-distance", "--algorithm", "--density",
+                                    "--radius-noise", "--radius-raster"}) {
     if (CLI::Option* option = command.get_option_no_throw(inline_option)) world->excludes(option);
   }
   command.add_option("--timeout", arguments.timeout_seconds, "Deadline of each call, seconds")
       ->check(CLI::NonNegativeNumber);
   if (server_optional) command.get_option("--timeout")->needs(server);
   AddConnectionOptions(command, arguments.connection);
+}
+
+StatusOr<v1::World> RemoteWorld(const WorldArguments& world) {
+  if (Status status = CheckFieldAlgorithm(world.field, world.algorithm); !status.ok()) {
+    return status;
+  }
+  StatusOr<std::optional<v1::RadiusField>> field = ParseRemoteField(world.field);
+  if (!field.ok()) return field.status();
+  if (!field->has_value()) {
+    StatusOr<World> parsed = ParseWorld(world);
+    if (!parsed.ok()) return parsed.status();
+    return WorldToMessage(*parsed);
+  }
+  // The rest of the world as for a constant one; the field's min_distance is its r_min.
+  WorldArguments rest = world;
+  rest.field = {};
+  StatusOr<World> parsed = ParseWorld(rest);
+  if (!parsed.ok()) return parsed.status();
+  v1::World message = WorldToMessage(*parsed);
+  *message.mutable_radius_field() = std::move(**field);
+  return message;
 }
 
 client::CallOptions CallOptionsFor(const RemoteArguments& arguments) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "client/options/connection_options.h"
+#include "client/options/rect_option.h"
 #include "client/options/world_options.h"
 #include "scallop/v1/scallop.pb.h"
 #include "scallop_client.h"
@@ -28,9 +29,13 @@ void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server
 
 client::CallOptions CallOptionsFor(const RemoteArguments& arguments);
 
-// Sets the request's world: by name with --world, else inline from --seed,
-// --min-distance, --algorithm and --density (checked here, so bad values exit 2
-// without a call).
+// The inline world a request to scallopd carries, from --seed, --min-distance,
+// --algorithm and --density, or with a radius field (a raster by the name the
+// server loaded it under). Checked here as far as the client can (all but a
+// raster's), so bad values exit 2 without a call.
+StatusOr<v1::World> RemoteWorld(const WorldArguments& world);
+
+// Sets the request's world: by name with --world, else inline (RemoteWorld).
 template <typename Request>
 Status SetRequestWorld(const RemoteArguments& remote, const WorldArguments& world,
                        Request& request) {
@@ -38,9 +43,9 @@ Status SetRequestWorld(const RemoteArguments& remote, const WorldArguments& worl
     request.set_world_name(remote.world_name);
     return Status::Ok();
   }
-  StatusOr<World> parsed = ParseWorld(world);
-  if (!parsed.ok()) return parsed.status();
-  *request.mutable_world() = WorldToMessage(*parsed);
+  StatusOr<v1::World> message = RemoteWorld(world);
+  if (!message.ok()) return message.status();
+  *request.mutable_world() = std::move(*message);
   return Status::Ok();
 }
 
@@ -49,9 +54,9 @@ template <typename Request>
 Status SetRequestWorldAndRect(const RemoteArguments& remote, const WorldArguments& world,
                               Request& request) {
   if (Status status = SetRequestWorld(remote, world, request); !status.ok()) return status;
-  StatusOr<WorldQuery> query = ParseWorldQuery(world);
-  if (!query.ok()) return query.status();
-  *request.mutable_rect() = RectToMessage(query->rect);
+  StatusOr<Rect> rect = ParseRect(world.rect, "--rect");
+  if (!rect.ok()) return rect.status();
+  *request.mutable_rect() = RectToMessage(*rect);
   return Status::Ok();
 }
 

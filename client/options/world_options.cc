@@ -21,6 +21,7 @@ void AddWorldOptions(CLI::App& command, WorldArguments& arguments, bool with_rec
   command.add_option("--algorithm", arguments.algorithm, "a1, a2 or a3")->capture_default_str();
   command.add_option("--density", arguments.density, "r'/2r in (1, 2], a1 and a2 only")
       ->capture_default_str();
+  AddFieldOptions(command, arguments.field);
   command.add_option("--threads", arguments.threads, "Threads generating regions")
       ->capture_default_str();
   if (with_rect) {
@@ -47,10 +48,16 @@ StatusOr<World> ParseWorld(const WorldArguments& arguments) {
   if (!seed.ok()) return seed.status();
   StatusOr<WorldAlgorithm> algorithm = ParseWorldAlgorithm(arguments.algorithm);
   if (!algorithm.ok()) return algorithm.status();
+  if (Status status = CheckFieldAlgorithm(arguments.field, arguments.algorithm); !status.ok()) {
+    return status;
+  }
+  StatusOr<std::optional<RadiusFieldSpec>> field = ParseLocalField(arguments.field);
+  if (!field.ok()) return field.status();
   return World::Create({.seed = *seed,
                         .min_distance = arguments.min_distance,
                         .algorithm = *algorithm,
-                        .density = arguments.density});
+                        .density = arguments.density,
+                        .radius_field = std::move(*field)});
 }
 
 StatusOr<uint64_t> ParseSeed(const std::string& text) {

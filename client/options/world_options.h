@@ -1,12 +1,13 @@
 // The options that name a world and a rectangle of it (--seed, --min-distance,
-// --algorithm, --density, --threads, --rect), shared by every command that
-// queries the plane, locally or through a server.
+// --algorithm, --density, the radius field's options, --threads, --rect),
+// shared by every command that queries the plane, locally or through a server.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
 
+#include "client/options/field_options.h"
 #include "scallop/base/status.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/plane/plane_engine.h"
@@ -22,6 +23,7 @@ struct WorldArguments {
   double density = 2.0;
   int threads = 2;
   std::string rect;
+  FieldArguments field;  // instead of --min-distance
 };
 
 // Adds the world options to `command`, storing into `arguments`, which must
@@ -41,8 +43,10 @@ struct WorldQuery {
 // limit. Errors name the option or the world field.
 StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments);
 
-// The world alone (--seed, --min-distance, --algorithm, --density), checked:
-// the one way the CLI turns typed options into a World.
+// The world alone (--seed, --min-distance, --algorithm, --density, or a radius
+// field, its raster read from its file), checked: the one way the CLI turns
+// typed options into a World. A field's errors name its option
+// (ParseLocalField).
 StatusOr<World> ParseWorld(const WorldArguments& arguments);
 
 // --seed as typed: all of the text an integer in 0..2^64-1, else an error

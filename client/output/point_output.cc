@@ -8,16 +8,20 @@
 namespace scallop::cli {
 namespace {
 
-void WriteCsv(std::ostream& out, std::span<const Vec2> points, std::span<const uint64_t> ids) {
+void WriteCsv(std::ostream& out, std::span<const Vec2> points, std::span<const uint64_t> ids,
+              std::span<const double> radii) {
   out << std::setprecision(17);
-  out << (ids.empty() ? "x,y\n" : "id,x,y\n");
+  out << CsvHeader(!ids.empty(), !radii.empty());
   for (size_t i = 0; i < points.size(); ++i) {
     if (!ids.empty()) out << ids[i] << ',';
-    out << points[i].x << ',' << points[i].y << '\n';
+    out << points[i].x << ',' << points[i].y;
+    if (!radii.empty()) out << ',' << radii[i];
+    out << '\n';
   }
 }
 
-void WriteJson(std::ostream& out, std::span<const Vec2> points, std::span<const uint64_t> ids) {
+void WriteJson(std::ostream& out, std::span<const Vec2> points, std::span<const uint64_t> ids,
+               std::span<const double> radii) {
   nlohmann::json xs = nlohmann::json::array(), ys = nlohmann::json::array();
   for (const Vec2& p : points) {
     xs.push_back(p.x);
@@ -25,11 +29,12 @@ void WriteJson(std::ostream& out, std::span<const Vec2> points, std::span<const 
   }
   nlohmann::json document{{"count", points.size()}, {"x", xs}, {"y", ys}};
   if (!ids.empty()) document["id"] = std::vector<uint64_t>(ids.begin(), ids.end());
+  if (!radii.empty()) document["r"] = std::vector<double>(radii.begin(), radii.end());
   out << document.dump() << '\n';
 }
 
-void WriteSvg(std::ostream& out, std::span<const Vec2> points, const Rect& view,
-              const SvgStyle& style) {
+void WriteSvg(std::ostream& out, std::span<const Vec2> points, std::span<const double> radii,
+              const Rect& view, const SvgStyle& style) {
   // y grows upwards in the world and downwards in SVG: flip with a transform.
   const double stroke = std::max(view.Width(), view.Height()) / 1000.0;
   out << std::setprecision(9);
@@ -54,13 +59,28 @@ void WriteSvg(std::ostream& out, std::span<const Vec2> points, const Rect& view,
     out << "</g>\n";
   }
   out << "<g fill=\"#234\">\n";
-  for (const Vec2& p : points) {
-    out << "<circle cx=\"" << p.x << "\" cy=\"" << p.y << "\" r=\"" << style.dot_radius << "\"/>\n";
+  for (size_t i = 0; i < points.size(); ++i) {
+    // A field world's disks are R/2 at each point: where they touch, the spacing is met.
+    const double r = radii.empty() ? style.dot_radius : radii[i] / 2;
+    out << "<circle cx=\"" << points[i].x << "\" cy=\"" << points[i].y << "\" r=\"" << r
+        << "\"/>\n";
   }
   out << "</g>\n</g>\n</svg>\n";
 }
 
 }  // namespace
+
+std::vector<double> RadiiAt(const RadiusField* field, std::span<const Vec2> points) {
+  std::vector<double> radii;
+  if (field == nullptr) return radii;
+  radii.reserve(points.size());
+  for (const Vec2& p : points) radii.push_back(field->Evaluate(p));
+  return radii;
+}
+
+std::string CsvHeader(bool with_ids, bool with_radii) {
+  return std::string(with_ids ? "id," : "") + "x,y" + (with_radii ? ",r" : "") + "\n";
+}
 
 const std::vector<std::pair<std::string, PointFormat>>& PointFormatNames() {
   static const std::vector<std::pair<std::string, PointFormat>> names{{"csv", PointFormat::kCsv},
@@ -71,16 +91,17 @@ const std::vector<std::pair<std::string, PointFormat>>& PointFormatNames() {
 }
 
 void WritePoints(std::ostream& out, PointFormat format, std::span<const Vec2> points,
-                 std::span<const uint64_t> ids, const Rect& view, const SvgStyle& style) {
+                 std::span<const uint64_t> ids, std::span<const double> radii, const Rect& view,
+                 const SvgStyle& style) {
   switch (format) {
     case PointFormat::kCsv:
-      WriteCsv(out, points, ids);
+      WriteCsv(out, points, ids, radii);
       break;
     case PointFormat::kJson:
-      WriteJson(out, points, ids);
+      WriteJson(out, points, ids, radii);
       break;
     case PointFormat::kSvg:
-      WriteSvg(out, points, view, style);
+      WriteSvg(out, points, radii, view, style);
       break;
     case PointFormat::kNone:
       break;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "scallop/field/radius_field.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
 
@@ -24,9 +25,18 @@ struct SvgStyle {
   double dot_radius = 0.5;
 };
 
-// CSV `x,y` with a header, or `id,x,y` when ids are given (one per point).
-// Coordinates are printed with 17 significant digits, so they read back exactly.
+// CSV `x,y` with a header, `id,x,y` when ids are given (one per point), and a last column `r`
+// when radii are given (a field world: R at each point). JSON has arrays x, y, id and r the same
+// way. SVG draws each point as a disk of radius r/2 when radii are given, else style.dot_radius.
+// Numbers are printed with 17 significant digits, so they read back exactly.
 void WritePoints(std::ostream& out, PointFormat format, std::span<const Vec2> points,
-                 std::span<const uint64_t> ids, const Rect& view, const SvgStyle& style);
+                 std::span<const uint64_t> ids, std::span<const double> radii, const Rect& view,
+                 const SvgStyle& style);
+
+// R at each point for a field (the r column); empty for null (a world without a field).
+std::vector<double> RadiiAt(const RadiusField* field, std::span<const Vec2> points);
+
+// The CSV header line WritePoints writes, newline included: "id,x,y,r\n" and its shorter forms.
+std::string CsvHeader(bool with_ids, bool with_radii);
 
 }  // namespace scallop::cli

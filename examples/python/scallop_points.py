@@ -3,7 +3,9 @@
 
 Prints `id,x,y` rows exactly as `scallop plane` does for the same world and
 rectangle (ids in decimal, coordinates with 17 significant digits), reading
-every page of GetPoints or, with --stream, the chunks of StreamPoints.
+every page of GetPoints or, with --stream, the chunks of StreamPoints. A world
+with a radius field (--radius-noise, or a named one) prints `id,x,y,r`, r
+being the spacing the field wants at the point.
 Stubs come from generate_stubs.sh; put their folder on PYTHONPATH.
 
 With --tls-ca (and --tls-cert/--tls-key for mutual TLS) it speaks TLS; a
@@ -63,6 +65,9 @@ def parse_arguments(argv):
     parser.add_argument("--min-distance", type=float, default=1.0)
     parser.add_argument("--algorithm", choices=sorted(ALGORITHMS), default="a3")
     parser.add_argument("--density", type=float, default=0.0, help="r'/2r; 0: default")
+    parser.add_argument("--radius-noise", metavar="R_MIN,R_MAX,FREQUENCY[,OCTAVES]",
+                        help="an inline world's noise radius field (instead of --min-distance)")
+    parser.add_argument("--radius-noise-seed", type=int, default=0, help="the noise's own seed")
     parser.add_argument("--rect", required=True, help="X0,Y0,X1,Y1 (half-open)")
     parser.add_argument("--stream", action="store_true", help="use StreamPoints")
     parser.add_argument("--page-size", type=int, default=0)
@@ -79,10 +84,24 @@ def world_choice(arguments):
     if arguments.world is not None:
         return {"world_name": arguments.world}
     if arguments.seed is not None:
-        return {"world": scallop_pb2.World(
+        world = scallop_pb2.World(
             seed=arguments.seed, min_distance=arguments.min_distance,
-            algorithm=ALGORITHMS[arguments.algorithm], density=arguments.density)}
+            algorithm=ALGORITHMS[arguments.algorithm], density=arguments.density)
+        if arguments.radius_noise is not None:
+            world.radius_field.noise.CopyFrom(noise_field(arguments))
+        return {"world": world}
     return {}
+
+
+def noise_field(arguments):
+    """--radius-noise as a NoiseRadiusField; octaves and gain 0 mean the server's defaults."""
+    values = [float(v) for v in arguments.radius_noise.split(",")]
+    if len(values) not in (3, 4):
+        raise ValueError("--radius-noise: expected R_MIN,R_MAX,FREQUENCY[,OCTAVES]")
+    return scallop_pb2.NoiseRadiusField(
+        r_min=values[0], r_max=values[1], frequency=values[2],
+        octaves=int(values[3]) if len(values) == 4 else 0,
+        noise_seed=arguments.radius_noise_seed)
 
 
 def read_file(flag, path):
@@ -151,6 +170,7 @@ def main(argv):
     arguments = parse_arguments(argv)
     try:
         rect = parse_rect(arguments.rect)
+        world_choice(arguments)  # a bad --radius-noise exits 2 before any call
         arguments.metadata = call_metadata(arguments)
         channel = open_channel(arguments)
     except ValueError as error:
@@ -160,11 +180,22 @@ def main(argv):
         stub = scallop_pb2_grpc.ScallopStub(channel)
         read = points_of_stream if arguments.stream else points_of_pages
         out = sys.stdout
-        out.write("id,x,y\n")
+        header = None
         try:
             for points in read(stub, arguments, rect):
-                for point_id, x, y in zip(points.ids, points.xs, points.ys):
-                    out.write(f"{point_id},{x:.17g},{y:.17g}\n")
+                if not points.ids:
+                    continue
+                if header is None:  # a field world's points carry radii
+                    header = "id,x,y,r\n" if points.radii else "id,x,y\n"
+                    out.write(header)
+                if points.radii:
+                    for point_id, x, y, r in zip(points.ids, points.xs, points.ys, points.radii):
+                        out.write(f"{point_id},{x:.17g},{y:.17g},{r:.17g}\n")
+                else:
+                    for point_id, x, y in zip(points.ids, points.xs, points.ys):
+                        out.write(f"{point_id},{x:.17g},{y:.17g}\n")
+            if header is None:
+                out.write("id,x,y,r\n" if arguments.radius_noise else "id,x,y\n")
         except grpc.RpcError as error:
             print(f"scallop_points: {error.code().name}: {error.details()}", file=sys.stderr)
             return 1

@@ -3,9 +3,11 @@
 
 #include <string>
 
+#include "field_messages.h"
+
 namespace scallop {
 
-StatusOr<World> WorldFromMessage(const v1::World& message) {
+StatusOr<World> WorldFromMessage(const v1::World& message, const RasterCatalog* rasters) {
   WorldSpec spec;
   spec.seed = message.seed();
   spec.min_distance = message.min_distance();
@@ -29,10 +31,24 @@ StatusOr<World> WorldFromMessage(const v1::World& message) {
   spec.density = message.density() == 0.0 ? 2.0 : message.density();
   spec.generator_version =
       message.generator_version() == 0 ? kGeneratorVersion : message.generator_version();
+  if (message.has_radius_field()) {
+    const RasterCatalog none;
+    StatusOr<RadiusFieldSpec> field =
+        RadiusFieldFromMessage(message.radius_field(), rasters != nullptr ? *rasters : none);
+    if (!field.ok()) return field.status();
+    spec.radius_field = std::move(*field);
+  }
   return World::Create(spec);
 }
 
-v1::World WorldToMessage(const World& world) { return WorldToMessage(world.spec()); }
+v1::World WorldToMessage(const World& world, const RasterCatalog* rasters) {
+  v1::World message = WorldToMessage(world.spec());
+  if (const RadiusField* field = world.radius_field()) {
+    *message.mutable_radius_field() =
+        RadiusFieldToMessage(field->spec(), RasterOf(field->spec(), rasters));
+  }
+  return message;
+}
 
 v1::World WorldToMessage(const WorldSpec& spec) {
   v1::World message;
@@ -51,6 +67,9 @@ v1::World WorldToMessage(const WorldSpec& spec) {
   }
   message.set_density(spec.density);
   message.set_generator_version(spec.generator_version);
+  if (spec.radius_field.has_value() && spec.radius_field->kind != RadiusFieldKind::kConstant) {
+    *message.mutable_radius_field() = RadiusFieldToMessage(*spec.radius_field, nullptr);
+  }
   return message;
 }
 
@@ -67,13 +86,14 @@ v1::Rect RectToMessage(const Rect& rect) {
   return message;
 }
 
-void AppendPoints(const PlanePoints& points, size_t begin, size_t end, v1::Points& message) {
-  PointsAppender appender(message, end - begin);
+void AppendPoints(const PlanePoints& points, size_t begin, size_t end, v1::Points& message,
+                  const RadiusField* field) {
+  PointsAppender appender(message, end - begin, field);
   for (size_t k = begin; k < end; ++k) appender.Append(points.positions[k], points.ids[k]);
 }
 
-PointsAppender::PointsAppender(v1::Points& message, size_t capacity)
-    : message_(message), start_(message.ids_size()) {
+PointsAppender::PointsAppender(v1::Points& message, size_t capacity, const RadiusField* field)
+    : message_(message), start_(message.ids_size()), field_(field) {
   const int room = static_cast<int>(capacity);
   message.mutable_xs()->Reserve(start_ + room);
   message.mutable_ys()->Reserve(start_ + room);
@@ -81,6 +101,10 @@ PointsAppender::PointsAppender(v1::Points& message, size_t capacity)
   xs_ = message.mutable_xs()->AddNAlreadyReserved(room);
   ys_ = message.mutable_ys()->AddNAlreadyReserved(room);
   ids_ = message.mutable_ids()->AddNAlreadyReserved(room);
+  if (field_ != nullptr) {
+    message.mutable_radii()->Reserve(start_ + room);
+    radii_ = message.mutable_radii()->AddNAlreadyReserved(room);
+  }
 }
 
 PointsAppender::~PointsAppender() {
@@ -88,12 +112,17 @@ PointsAppender::~PointsAppender() {
   message_.mutable_xs()->Truncate(size);
   message_.mutable_ys()->Truncate(size);
   message_.mutable_ids()->Truncate(size);
+  if (field_ != nullptr) message_.mutable_radii()->Truncate(size);
 }
 
-Status ReadPoints(const v1::Points& message, PlanePoints& points) {
+Status ReadPoints(const v1::Points& message, PlanePoints& points, std::vector<double>* radii) {
   if (message.xs_size() != message.ys_size() || message.xs_size() != message.ids_size()) {
     return InvalidArgument("points: xs, ys and ids must have the same length");
   }
+  if (message.radii_size() != 0 && message.radii_size() != message.xs_size()) {
+    return InvalidArgument("points: radii must be empty or as long as xs");
+  }
+  if (radii != nullptr) radii->insert(radii->end(), message.radii().begin(), message.radii().end());
   for (int k = 0; k < message.xs_size(); ++k) {
     points.positions.push_back({message.xs(k), message.ys(k)});
     points.ids.push_back(message.ids(k));

@@ -4,8 +4,11 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
+#include "raster_catalog.h"
 #include "scallop/base/status.h"
+#include "scallop/field/radius_field.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/world.h"
@@ -15,31 +18,42 @@ namespace scallop {
 
 // The message's world, with its zero defaults filled in, validated
 // (World::Create). INVALID_ARGUMENT naming the field (world.algorithm,
-// world.density, world.min_distance, world.generator_version) otherwise.
-StatusOr<World> WorldFromMessage(const v1::World& message);
+// world.density, world.min_distance, world.generator_version, and a radius
+// field's as RadiusFieldFromMessage names them: world.radius_field.noise.r_min,
+// world.radius_field.raster.raster_name...) otherwise. A raster field's name
+// is looked up in `rasters` (null: none loaded, so every raster name is
+// unknown). Cost: O(1); a raster field O(pixels) (its checks and mask table).
+StatusOr<World> WorldFromMessage(const v1::World& message, const RasterCatalog* rasters = nullptr);
 
-// The world as a message, every field explicit (no zero defaults left).
-v1::World WorldToMessage(const World& world);
+// The world as a message, every field explicit (no zero defaults left); a
+// raster field by its name and pixel hash in `rasters` (null, or an image
+// it does not hold: the name left empty).
+v1::World WorldToMessage(const World& world, const RasterCatalog* rasters = nullptr);
 // A spec as a message, field for field, valid or not: what a client sends
-// for the server to judge.
+// for the server to judge (a raster field without its name, which the
+// caller sets: the spec holds only pixels).
 v1::World WorldToMessage(const WorldSpec& spec);
 
 // Field-for-field; the range checks are CheckQueryRect's (query_rect.h).
 Rect RectFromMessage(const v1::Rect& message);
 v1::Rect RectToMessage(const Rect& rect);
 
-// Points [begin, end) of `points` appended to the packed arrays of `message`.
-void AppendPoints(const PlanePoints& points, size_t begin, size_t end, v1::Points& message);
+// Points [begin, end) of `points` appended to the packed arrays of `message`;
+// with a field (a field world's), each point's R in radii as well.
+void AppendPoints(const PlanePoints& points, size_t begin, size_t end, v1::Points& message,
+                  const RadiusField* field = nullptr);
 
 // Appends points to the packed arrays of a message through plain pointers:
 // room for `capacity` points is made up front, and the destructor cuts the
 // arrays to the points appended. (add_xs() and the like check the capacity
 // and store the size for every element, three times a point; that copy was
 // 15% of a warm server's time.) Use the message only after the appender is
-// gone. REQUIRES: at most `capacity` calls of Append.
+// gone. With a field (a field world's, null otherwise), each point's R goes
+// into radii too (one evaluation a point). REQUIRES: at most `capacity`
+// calls of Append.
 class PointsAppender {
  public:
-  PointsAppender(v1::Points& message, size_t capacity);
+  PointsAppender(v1::Points& message, size_t capacity, const RadiusField* field = nullptr);
   ~PointsAppender();
   PointsAppender(const PointsAppender&) = delete;
   PointsAppender& operator=(const PointsAppender&) = delete;
@@ -48,6 +62,7 @@ class PointsAppender {
     xs_[count_] = position.x;
     ys_[count_] = position.y;
     ids_[count_] = id;
+    if (field_ != nullptr) radii_[count_] = field_->Evaluate(position);
     ++count_;
   }
   size_t count() const { return count_; }
@@ -58,11 +73,15 @@ class PointsAppender {
   double* xs_;
   double* ys_;
   uint64_t* ids_;
+  const RadiusField* field_;
+  double* radii_ = nullptr;
   size_t count_ = 0;
 };
 
-// The message's points appended to `points`. INVALID_ARGUMENT when the three
-// arrays differ in length (a malformed message).
-Status ReadPoints(const v1::Points& message, PlanePoints& points);
+// The message's points appended to `points`, and its radii to `radii` when
+// given. INVALID_ARGUMENT when xs, ys and ids differ in length, or radii is
+// neither empty nor as long (a malformed message).
+Status ReadPoints(const v1::Points& message, PlanePoints& points,
+                  std::vector<double>* radii = nullptr);
 
 }  // namespace scallop

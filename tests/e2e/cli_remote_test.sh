@@ -11,15 +11,9 @@ scallopd=${2:?usage: cli_remote_test.sh path/to/scallop path/to/scallopd}
 source "$(dirname "$0")/../shell_checks.sh"
 
 # Start on a free port (port 0) and read the address it prints.
-mkfifo "$work/address"
-"$scallopd" --listen 127.0.0.1:0 --world coast:7:1:a3 >"$work/address" 2>"$work/server.log" &
-server_pid=$!
-read -r line <"$work/address"
-server=${line#scallopd listening on }
-for _ in $(seq 100); do
-  "$scallop" info --server "$server" >/dev/null 2>&1 && break
-  sleep 0.1
-done
+start_scallopd server --listen 127.0.0.1:0 --world coast:7:1:a3
+server_pid=$started_pid
+server=$address
 
 rect=-37.5,-20.25,41,50
 run "$scallop" plane --seed 7 --rect "$rect"
@@ -93,15 +87,9 @@ log_level: warn
 worlds:
   dense: {seed: 9, min_distance: 0.5, algorithm: a1, density: 1.2}
 YAML
-mkfifo "$work/address2"
-"$scallopd" --config "$work/config.yaml" >"$work/address2" 2>"$work/server2.log" &
-config_pid=$!
-read -r line <"$work/address2"
-configured=${line#scallopd listening on }
-for _ in $(seq 100); do
-  "$scallop" info --server "$configured" >/dev/null 2>&1 && break
-  sleep 0.1
-done
+start_scallopd server2 --config "$work/config.yaml"
+config_pid=$started_pid
+configured=$address
 run "$scallop" info --server "$configured" --json
 if grep -q '"default_world":"dense"' "$work/out" && grep -q '"max_page_size":500' "$work/out" &&
   grep -q 'density=1.2' "$work/out"; then pass; else fail "config file not applied: $(cat "$work/out")"; fi
@@ -167,15 +155,9 @@ expect_status 0 "noise --server"
 if cmp -s "$work/local.png" "$work/remote.png"; then pass; else fail "noise --server PNG differs from local"; fi
 
 printf 'listen: 127.0.0.1:0\nmax_nearest_batch: 7\nmax_noise_grid_samples: 5000\n' >"$work/small.yaml"
-mkfifo "$work/address3"
-"$scallopd" --config "$work/small.yaml" >"$work/address3" 2>"$work/server3.log" &
-small_pid=$!
-read -r line <"$work/address3"
-small=${line#scallopd listening on }
-for _ in $(seq 100); do
-  "$scallop" info --server "$small" >/dev/null 2>&1 && break
-  sleep 0.1
-done
+start_scallopd server3 --config "$work/small.yaml"
+small_pid=$started_pid
+small=$address
 run "$scallop" nearest --server "$small" --seed 7 --input "$work/positions"
 expect_status 0 "nearest in batches of 7"
 if cmp -s "$work/out" "$work/nearest.csv"; then pass; else fail "nearest in batches of 7 differs from local"; fi

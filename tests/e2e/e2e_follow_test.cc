@@ -74,7 +74,7 @@ bool Overlaps(const Rect& a, const Rect& b) {
 bool Kept(const World& world, RegionKey key, const Rect& viewport, double margin) {
   const Rect grown{viewport.x0 - margin, viewport.y0 - margin, viewport.x1 + margin,
                    viewport.y1 + margin};
-  return Overlaps(RegionLayout(world.min_distance()).RegionRect(key), grown);
+  return Overlaps(RegionLayout(world).RegionRect(key), grown);
 }
 
 // A follower checking every answer against the core; failures are reported

@@ -39,6 +39,8 @@ compare "streamed named world" "--world hills --stream --rect=-40,5,35,61" \
   "--seed 11 --min-distance 0.5 --algorithm a1 --rect -40,5,35,61"
 compare "A2 with density" "--seed 3 --algorithm a2 --density 1.5 --rect=100,100,140,150" \
   "--seed 3 --algorithm a2 --density 1.5 --rect 100,100,140,150"
+compare "noise radius field" "--seed 5 --radius-noise 1,3,0.02 --radius-noise-seed 2 --rect=-20,-20,30,30" \
+  "--seed 5 --radius-noise 1,3,0.02 --radius-noise-seed 2 --rect -20,-20,30,30"
 
 # gRPC targets: a name resolved by DNS, two addresses balanced round_robin.
 port=${address##*:}
@@ -88,4 +90,4 @@ expect_failure "TLS without a client certificate" UNAVAILABLE --tls-ca "$work/ca
 expect_failure "no token" UNAUTHENTICATED "${tls_args[@]}"
 expect_failure "a wrong token" UNAUTHENTICATED "${tls_args[@]}" --token-file "$work/wrong-token"
 kill "$secure_pid"
-echo "python client: 6 comparisons with scallop plane, the service config and 4 error cases passed"
+echo "python client: the comparisons with scallop plane (a noise field among them), the service config and 4 error cases passed"
