@@ -121,22 +121,22 @@ Measured MeasureSampler(Algorithm algorithm, double density, bool exhaustive = f
       kTorus, seeds);
 }
 
-// The paper's A1 (new points only within r' of the set) on the torus, which Sample's A1 no
-// longer is at density 2.
+// The paper's A1 (new points only within r' of the set), which Sample's A1 no longer is at
+// density 2, with its bulk placed by `bulk`.
+std::vector<Vec2> SamplePapersA1(const Domain& domain, double density, A1Bulk bulk, uint64_t seed) {
+  SamplingProblem problem;
+  problem.domain = domain;
+  problem.min_distance = kD;
+  problem.density = density;
+  Rng rng(HashWords({seed, static_cast<uint64_t>(Algorithm::kA1)}));
+  return SampleScalloped(problem, CandidateChoice::kByArea, rng, bulk, A1Reach::kNearPoints);
+}
+
 Measured MeasurePapersA1(double density, int seeds = kSeeds) {
   char name[64];
   std::snprintf(name, sizeof name, "paper's a1 density %.2f", density);
   return Measure(
-      name,
-      [&](uint64_t seed) {
-        SamplingProblem problem;
-        problem.domain = kTorus;
-        problem.min_distance = kD;
-        problem.density = density;
-        Rng rng(HashWords({seed, static_cast<uint64_t>(Algorithm::kA1)}));
-        return SampleScalloped(problem, CandidateChoice::kByArea, rng, A1Bulk::kCells,
-                               A1Reach::kNearPoints);
-      },
+      name, [&](uint64_t seed) { return SamplePapersA1(kTorus, density, A1Bulk::kCells, seed); },
       kTorus, seeds);
 }
 
@@ -496,15 +496,7 @@ TEST(SamplerDistributionTest, A1CellsMatchNeighbourhoodsOnARectangle) {
     std::snprintf(name, sizeof name, "A1 %s density %.2f",
                   bulk == A1Bulk::kCells ? "cells" : "neighbourhoods", density);
     return Measure(
-        name,
-        [&](uint64_t seed) {
-          SamplingProblem problem;
-          problem.domain = kRectangle;
-          problem.min_distance = kD;
-          problem.density = density;
-          Rng rng(seed);
-          return SampleScalloped(problem, CandidateChoice::kByArea, rng, bulk);
-        },
+        name, [&](uint64_t seed) { return SamplePapersA1(kRectangle, density, bulk, seed); },
         kRectangle);
   };
   for (const double density : {2.0, 1.3}) {
