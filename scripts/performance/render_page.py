@@ -72,7 +72,8 @@ def bounded_samplers(run):
     methods = (("bridson_baseline", "Bridson, k = 30 (baseline)"),
                ("a3", "**A3**, boundary sampling"),
                ("a2", "**A2**, O(N) dart throwing"),
-               ("a1", "**A1**, dart throwing with cells"),
+               ("a1", "**A1**, exact dart throwing with cells"),
+               ("a1_paper", "the paper's A1 (within r' = 2 d), with cells"),
                ("dart", "dart throwing, 1000 misses (not maximal)"),
                ("best_candidate", "Mitchell's best candidate (k = 1)"))
 
@@ -98,6 +99,12 @@ def bounded_samplers(run):
                          f"{si(pps)} ({ratio(pps, base['points_per_second'])})")
         bytes_cell = f"{last['peak_bytes_per_point']:.0f}" if last else "–"
         out.append(f"| {label} | {' | '.join(cells)} | {bytes_cell} |\n")
+    exact = [(n, row_for("a1", n), row_for("a1_paper", n)) for n in sizes]
+    exact = [f"{ratio(a['points_per_second'], p['points_per_second'])} at N ≈ {si(n)}"
+             for n, a, p in exact if a and p]
+    if exact:
+        out.append("\nExact A1 against the paper's A1 (its speed before it became exact; target: at\n"
+                   f"least 1x): {', '.join(exact)}.\n")
     return "".join(out)
 
 
