@@ -92,6 +92,14 @@ Status ReadEncodedPoints(const v1::EncodedPoints& message, PlanePoints& points) 
       .region_side = message.region_side(),
       .id_index_bits = static_cast<int>(std::min<uint32_t>(message.id_index_bits(), 64))};
   if (Status status = CheckEncodedPointsHeader(header); !status.ok()) return status;
+  // Room for every point at once, counted from the bytes that hold them (so
+  // a message cannot make us reserve more than it carries).
+  size_t room = 0;
+  for (const v1::EncodedRegion& region : message.regions()) {
+    room += region.x_offsets().size() / std::max<uint32_t>(region.x_offset_bytes(), 1);
+  }
+  points.positions.reserve(points.positions.size() + room);
+  points.ids.reserve(points.ids.size() + room);
   for (int r = 0; r < message.regions_size(); ++r) {
     const v1::EncodedRegion& region = message.regions(r);
     const EncodedRegionView view{

@@ -9,8 +9,6 @@
 namespace scallop {
 namespace {
 
-constexpr uint64_t kSignBit = uint64_t{1} << 63;
-
 // Little-endian, kBytes bytes: the width known at compile time, so the loop
 // unrolls into a few loads and shifts.
 template <int kBytes>
@@ -79,15 +77,6 @@ Status CheckOffsets(std::string_view name, const char* axis, int width, size_t b
 
 }  // namespace
 
-uint64_t OrderedBits(double value) {
-  const auto bits = std::bit_cast<uint64_t>(value);
-  return (bits & kSignBit) != 0 ? ~bits : bits | kSignBit;
-}
-
-double FromOrderedBits(uint64_t bits) {
-  return std::bit_cast<double>((bits & kSignBit) != 0 ? bits & ~kSignBit : ~bits);
-}
-
 int ExactOffsetBytes(const RegionLayout& layout, int64_t k) {
   if (k == 0) return 8;
   const Rect owned = layout.RegionRect({k, k});
@@ -100,7 +89,6 @@ EncodedRegionBuilder::EncodedRegionBuilder(PointEncoding encoding, const RegionL
     : quantised_(encoding == PointEncoding::kQuantised) {
   region_.key = key;
   const Rect owned = layout.RegionRect(key);
-  low_ = {owned.x0, owned.y0};
   if (quantised_) {
     region_.x_offset_bytes = region_.y_offset_bytes = kQuantisedOffsetBytes;
     quantum_ = std::ldexp(layout.side(), -8 * kQuantisedOffsetBytes);
@@ -109,11 +97,17 @@ EncodedRegionBuilder::EncodedRegionBuilder(PointEncoding encoding, const RegionL
     region_.x_offset_bytes = ExactOffsetBytes(layout, key.i);
     region_.y_offset_bytes = ExactOffsetBytes(layout, key.j);
   }
-  region_.x_offsets.reserve(capacity * static_cast<size_t>(region_.x_offset_bytes));
-  region_.y_offsets.reserve(capacity * static_cast<size_t>(region_.y_offset_bytes));
+  x_ = {&region_.x_offsets, 0, region_.x_offset_bytes, owned.x0, OrderedBits(owned.x0)};
+  y_ = {&region_.y_offsets, 0, region_.y_offset_bytes, owned.y0, OrderedBits(owned.y0)};
+  region_.x_offsets.resize(capacity * static_cast<size_t>(region_.x_offset_bytes) + 8);
+  region_.y_offsets.resize(capacity * static_cast<size_t>(region_.y_offset_bytes) + 8);
 }
 
-EncodedRegion EncodedRegionBuilder::Take() && { return std::move(region_); }
+EncodedRegion EncodedRegionBuilder::Take() && {
+  region_.x_offsets.resize(x_.used);
+  region_.y_offsets.resize(y_.used);
+  return std::move(region_);
+}
 
 Status CheckEncodedPointsHeader(const EncodedPointsHeader& header) {
   if (header.encoding != PointEncoding::kExact && header.encoding != PointEncoding::kQuantised) {
@@ -160,8 +154,9 @@ Status DecodeRegion(const EncodedPointsHeader& header, const EncodedRegionView& 
   }
 
   const size_t first = points.positions.size();
+  // Growth stays geometric (resize, push_back): an exact reserve per region
+  // would copy everything decoded so far once per region.
   points.positions.resize(first + count);
-  points.ids.reserve(first + count);
   const uint64_t first_id = EncodePointId(region.key, 0, header.id_index_bits);
   uint64_t index = 0;
   for (size_t r = 0; r < runs.size(); r += 2) {
