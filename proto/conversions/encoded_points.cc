@@ -109,9 +109,7 @@ Status ReadEncodedPoints(const v1::EncodedPoints& message, PlanePoints& points) 
         .y_offset_bytes = static_cast<int>(std::min<uint32_t>(region.y_offset_bytes(), 64)),
         .x_offsets = region.x_offsets(),
         .y_offsets = region.y_offsets()};
-    if (Status status =
-            DecodeRegion(header, view, "encoded.regions[" + std::to_string(r) + "]", points);
-        !status.ok()) {
+    if (Status status = DecodeRegion(header, view, r, points); !status.ok()) {
       return status;
     }
   }

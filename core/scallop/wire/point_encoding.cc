@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 namespace scallop {
@@ -20,20 +21,36 @@ uint64_t ReadOffset(const char* at) {
   return value;
 }
 
+// The same as one 8-byte load and a mask, on a little-endian host with 8
+// bytes readable at `at` (all but the last few offsets).
+template <int kBytes>
+uint64_t ReadOffsetWide(const char* at) {
+  if constexpr (std::endian::native != std::endian::little) {
+    return ReadOffset<kBytes>(at);
+  } else {
+    uint64_t value;
+    std::memcpy(&value, at, sizeof value);
+    return kBytes == 8 ? value : value & ((uint64_t{1} << (8 * kBytes)) - 1);
+  }
+}
+
 // Writes axis `axis` of positions[0 .. count) from the offsets in `bytes`.
 template <int kBytes>
 void DecodeAxisAs(const char* bytes, size_t count, bool quantised, double edge, double quantum,
                   double Vec2::*axis, Vec2* positions) {
-  if (quantised) {
-    for (size_t n = 0; n < count; ++n) {
-      const auto cell = static_cast<double>(ReadOffset<kBytes>(bytes + n * kBytes));
-      positions[n].*axis = edge + (cell + 0.5) * quantum;
-    }
-  } else {
-    const uint64_t base = OrderedBits(edge);
-    for (size_t n = 0; n < count; ++n) {
-      positions[n].*axis = FromOrderedBits(base + ReadOffset<kBytes>(bytes + n * kBytes));
-    }
+  // Offsets [0, wide) have 8 bytes readable from their start: two loops, so
+  // the first has no test of which read to use.
+  const size_t wide = count * kBytes >= 8 ? (count * kBytes - 8) / kBytes + 1 : 0;
+  const uint64_t base = OrderedBits(edge);
+  const auto decode = [&](uint64_t offset) {
+    return quantised ? edge + (static_cast<double>(offset) + 0.5) * quantum
+                     : FromOrderedBits(base + offset);
+  };
+  for (size_t n = 0; n < wide; ++n) {
+    positions[n].*axis = decode(ReadOffsetWide<kBytes>(bytes + n * kBytes));
+  }
+  for (size_t n = wide; n < count; ++n) {
+    positions[n].*axis = decode(ReadOffset<kBytes>(bytes + n * kBytes));
   }
 }
 
@@ -61,14 +78,15 @@ void DecodeAxis(std::string_view bytes, int width, size_t count, bool quantised,
   }
 }
 
-Status CheckOffsets(std::string_view name, const char* axis, int width, size_t bytes,
-                    uint64_t count) {
+std::string RegionName(int number) { return "encoded.regions[" + std::to_string(number) + "]"; }
+
+Status CheckOffsets(int number, const char* axis, int width, size_t bytes, uint64_t count) {
   if (width < 1 || width > 8) {
-    return InvalidArgument(std::string(name) + "." + axis + "_offset_bytes: must be 1..8, got " +
+    return InvalidArgument(RegionName(number) + "." + axis + "_offset_bytes: must be 1..8, got " +
                            std::to_string(width));
   }
   if (bytes != count * static_cast<uint64_t>(width)) {
-    return InvalidArgument(std::string(name) + "." + axis + "_offsets: " + std::to_string(bytes) +
+    return InvalidArgument(RegionName(number) + "." + axis + "_offsets: " + std::to_string(bytes) +
                            " bytes, expected " + std::to_string(count) + " points of " +
                            std::to_string(width));
   }
@@ -125,11 +143,11 @@ Status CheckEncodedPointsHeader(const EncodedPointsHeader& header) {
   return Status::Ok();
 }
 
-Status DecodeRegion(const EncodedPointsHeader& header, const EncodedRegionView& region,
-                    std::string_view name, PlanePoints& points) {
+Status DecodeRegion(const EncodedPointsHeader& header, const EncodedRegionView& region, int number,
+                    PlanePoints& points) {
   const std::span<const uint32_t> runs = region.index_runs;
   if (runs.size() % 2 != 0) {
-    return InvalidArgument(std::string(name) + ".index_runs: must be skip, take pairs, got " +
+    return InvalidArgument(RegionName(number) + ".index_runs: must be skip, take pairs, got " +
                            std::to_string(runs.size()) + " numbers");
   }
   // 64-bit sums of 32-bit counts cannot overflow.
@@ -139,16 +157,16 @@ Status DecodeRegion(const EncodedPointsHeader& header, const EncodedRegionView& 
     end += uint64_t{runs[r]} + runs[r + 1];
   }
   if (end > (uint64_t{1} << header.id_index_bits)) {
-    return InvalidArgument(std::string(name) + ".index_runs: index " + std::to_string(end - 1) +
+    return InvalidArgument(RegionName(number) + ".index_runs: index " + std::to_string(end - 1) +
                            " beyond 2^" + std::to_string(header.id_index_bits));
   }
   if (Status status =
-          CheckOffsets(name, "x", region.x_offset_bytes, region.x_offsets.size(), count);
+          CheckOffsets(number, "x", region.x_offset_bytes, region.x_offsets.size(), count);
       !status.ok()) {
     return status;
   }
   if (Status status =
-          CheckOffsets(name, "y", region.y_offset_bytes, region.y_offsets.size(), count);
+          CheckOffsets(number, "y", region.y_offset_bytes, region.y_offsets.size(), count);
       !status.ok()) {
     return status;
   }
@@ -157,11 +175,12 @@ Status DecodeRegion(const EncodedPointsHeader& header, const EncodedRegionView& 
   // Growth stays geometric (resize, push_back): an exact reserve per region
   // would copy everything decoded so far once per region.
   points.positions.resize(first + count);
-  const uint64_t first_id = EncodePointId(region.key, 0, header.id_index_bits);
-  uint64_t index = 0;
+  points.ids.resize(first + count);
+  uint64_t* id = points.ids.data() + first;
+  uint64_t next = EncodePointId(region.key, 0, header.id_index_bits);
   for (size_t r = 0; r < runs.size(); r += 2) {
-    index += runs[r];
-    for (uint32_t t = 0; t < runs[r + 1]; ++t) points.ids.push_back(first_id + index++);
+    next += runs[r];
+    for (uint32_t t = 0; t < runs[r + 1]; ++t) *id++ = next++;
   }
   // The edges by RegionLayout's own expression (k * S), so that they are
   // the encoder's to the bit: S / 16 * 16 is S exactly.

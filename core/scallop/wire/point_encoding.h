@@ -159,11 +159,12 @@ Status CheckEncodedPointsHeader(const EncodedPointsHeader& header);
 
 // Appends the region's points to `points` (positions, and ids made from the
 // region, index and b), in index order. INVALID_ARGUMENT naming the field
-// (prefixed by `name`, e.g. "encoded.regions[3]") when the runs are not
+// (as the API names it: "encoded.regions[N].index_runs", N = `number`, the
+// region's place in its message) when the runs are not
 // skip/take pairs, an index reaches 2^b, an offset width is outside 1..8,
 // or the offsets' lengths differ from points x width; nothing is appended
 // then. REQUIRES: CheckEncodedPointsHeader(header) is ok. O(points).
-Status DecodeRegion(const EncodedPointsHeader& header, const EncodedRegionView& region,
-                    std::string_view name, PlanePoints& points);
+Status DecodeRegion(const EncodedPointsHeader& header, const EncodedRegionView& region, int number,
+                    PlanePoints& points);
 
 }  // namespace scallop
