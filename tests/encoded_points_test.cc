@@ -310,6 +310,12 @@ TEST(EncodedPointsTest, MalformedMessagesAreRefusedNamingTheField) {
        [](v1::Points& m) {
          m.mutable_encoded()->mutable_regions(0)->mutable_y_offsets()->pop_back();
        }},
+      {"encoded.regions[1].x_offsets",  // a good region, then a bad one: neither is kept
+       [](v1::Points& m) {
+         v1::EncodedRegion& copy = *m.mutable_encoded()->add_regions();
+         copy = m.encoded().regions(0);
+         copy.mutable_x_offsets()->pop_back();
+       }},
       {"points: encoded and the packed", [](v1::Points& m) { m.add_xs(1); }},
       {"points: radii", [](v1::Points& m) { m.add_radii(1); }},
   };

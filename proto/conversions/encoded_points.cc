@@ -98,6 +98,7 @@ Status ReadEncodedPoints(const v1::EncodedPoints& message, PlanePoints& points) 
   for (const v1::EncodedRegion& region : message.regions()) {
     room += region.x_offsets().size() / std::max<uint32_t>(region.x_offset_bytes(), 1);
   }
+  const size_t first = points.ids.size();
   points.positions.reserve(points.positions.size() + room);
   points.ids.reserve(points.ids.size() + room);
   for (int r = 0; r < message.regions_size(); ++r) {
@@ -110,6 +111,8 @@ Status ReadEncodedPoints(const v1::EncodedPoints& message, PlanePoints& points) 
         .x_offsets = region.x_offsets(),
         .y_offsets = region.y_offsets()};
     if (Status status = DecodeRegion(header, view, r, points); !status.ok()) {
+      points.positions.resize(first);
+      points.ids.resize(first);
       return status;
     }
   }

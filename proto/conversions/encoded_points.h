@@ -83,8 +83,8 @@ void AppendPoints(const PlanePoints& points, size_t begin, size_t end, v1::Point
 
 // The message's encoded points appended to `points`, ids made from the
 // regions. INVALID_ARGUMENT naming the field (encoded.regions[3].x_offsets)
-// when the message is malformed (DecodeRegion); `points` may then hold the
-// regions before the bad one. O(points).
+// when the message is malformed (DecodeRegion); nothing is appended then.
+// O(points).
 Status ReadEncodedPoints(const v1::EncodedPoints& message, PlanePoints& points);
 
 }  // namespace scallop
