@@ -53,8 +53,8 @@ void AddEncodingOption(CLI::App& command, v1::PointEncoding& encoding) {
       {"quantised", v1::POINT_ENCODING_QUANTISED}};
   command
       .add_option("--encoding", encoding,
-                  "How points travel: packed (24 bytes a point), exact (the same doubles, 8-14 "
-                  "bytes) or quantised (2^-13 d, about 4.6 bytes); docs/wire.md")
+                  "How points travel: packed (24 bytes a point), exact (the same doubles, 8-15 "
+                  "bytes) or quantised (2^-13 d, about 4.3 bytes); docs/wire.md")
       ->transform(CLI::CheckedTransformer(encodings, CLI::ignore_case))
       ->option_text("packed|exact|quantised (default packed)");
 }
