@@ -27,7 +27,8 @@ namespace scallop {
 //    in ExactOffsetBytes bytes: decodes to the same double, bit for bit.
 //    In one binade that is (x - edge) / ulp(x), so it costs about
 //    log2(S / ulp(x)) bits: 7 bytes a coordinate within 2^8 d of the
-//    origin, 5 at 1e6 d, 4 at 1e9 d; 8 in the regions whose low edge is 0.
+//    origin, 5 at 1e6 d, 4 at 1e9 d; 8 in the regions on either side of 0
+//    (k = 0 and -1), where doubles get as fine as subnormals.
 //  - kQuantised: an offset is floor((x - edge) / q), q = S / 2^16, in 2
 //    bytes, decoded to the cell's centre edge + (n + 0.5) q: within q / 2 of
 //    the coordinate (2^-13 d for a constant world), plus the rounding of the
