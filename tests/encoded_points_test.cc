@@ -21,6 +21,7 @@
 
 #include "scallop/random/rng.h"
 #include "tests/field_test_fields.h"
+#include "tests/quantised_bound.h"
 #include "tests/test_worlds.h"
 
 namespace scallop {
@@ -53,17 +54,6 @@ size_t BitDifferences(const PlanePoints& expected, const PlanePoints& actual) {
     }
   }
   return differences;
-}
-
-// The stated bound of a quantised coordinate: half a cell of S / 2^16, plus
-// the rounding of the decoding sum (ulp of the coordinate and of S).
-double QuantisedBound(double coordinate, double side) {
-  const double ulp = [](double v) {
-    v = std::fabs(v);
-    return std::nextafter(v, std::numeric_limits<double>::infinity()) - v;
-  }(coordinate);
-  const double side_ulp = std::nextafter(side, 2 * side) - side;
-  return std::ldexp(side, -17) + ulp + side_ulp;
 }
 
 struct WorldCase {

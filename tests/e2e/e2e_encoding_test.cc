@@ -20,6 +20,7 @@
 #include "scallop/random/rng.h"
 #include "tests/e2e/scallopd_process.h"
 #include "tests/field_test_fields.h"
+#include "tests/quantised_bound.h"
 #include "tests/test_worlds.h"
 #include "world_messages.h"
 
@@ -57,14 +58,10 @@ struct Answer {
                                                 double side) {
   if (expected.points.ids != actual.points.ids)
     return ::testing::AssertionFailure() << "ids differ";
-  const auto ulp = [](double v) {
-    v = std::fabs(v);
-    return std::nextafter(v, std::numeric_limits<double>::infinity()) - v;
-  };
   for (size_t k = 0; k < expected.points.ids.size(); ++k) {
     const Vec2 a = expected.points.positions[k], b = actual.points.positions[k];
-    if (std::fabs(a.x - b.x) > std::ldexp(side, -17) + ulp(a.x) + ulp(side) ||
-        std::fabs(a.y - b.y) > std::ldexp(side, -17) + ulp(a.y) + ulp(side)) {
+    if (std::fabs(a.x - b.x) > QuantisedBound(a.x, side) ||
+        std::fabs(a.y - b.y) > QuantisedBound(a.y, side)) {
       return ::testing::AssertionFailure() << "point " << k << " beyond the bound";
     }
   }
