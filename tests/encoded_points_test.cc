@@ -98,7 +98,7 @@ TEST(EncodedPointsTest, ExactDecodesToThePackedArraysBitForBitAndQuantisedWithin
     size_t checked = 0, exact_bytes = 0, quantised_bytes = 0, packed_bytes = 0;
     double worst_error_in_d = 0;
     for (const auto& anchor : kAnchors) {
-      for (int n = 0; n < 4; ++n) {
+      for (int n = 0; n < 3; ++n) {
         const double w = dice.Uniform(1, c.extent), h = dice.Uniform(1, c.extent);
         const double x0 = (anchor[0] + dice.Uniform(-c.extent, c.extent)) * d;
         const double y0 = (anchor[1] + dice.Uniform(-c.extent, c.extent)) * d;
@@ -144,7 +144,7 @@ TEST(EncodedPointsTest, ExactDecodesToThePackedArraysBitForBitAndQuantisedWithin
         quantised_bytes += size(quantised);
       }
     }
-    ASSERT_GT(checked, 2000u) << c.name;
+    ASSERT_GT(checked, 1500u) << c.name;
     // The bound is tight: some coordinate comes near half a cell.
     EXPECT_GT(worst_error_in_d * d, std::ldexp(side, -18)) << c.name;
     const auto per_point = [&](size_t bytes) { return static_cast<double>(bytes) / checked; };
