@@ -22,6 +22,11 @@ REQUESTS = [
     ("get_points_far", 0, "GetPointsRequest",
      "world { seed: 3 min_distance: 1 algorithm: ALGORITHM_A2 generator_version: 3 } "
      "rect { x0: 4294967290 y0: -4294967296 x1: 4294967296 y1: -4294967290 }"),
+    ("get_points_exact", 0, "GetPointsRequest",
+     "world { seed: 5 min_distance: 1 algorithm: ALGORITHM_A3 } "
+     "rect { x0: -20 y0: 1e9 x1: 5 y1: 1000000012 } encoding: POINT_ENCODING_EXACT"),
+    ("get_points_quantised", 0, "GetPointsRequest",
+     "rect { x0: -9 y0: -9 x1: 9 y1: 9 } page_size: 7 encoding: POINT_ENCODING_QUANTISED"),
     ("stream_points", 1, "StreamPointsRequest",
      "world { seed: 1 min_distance: 1 algorithm: ALGORITHM_A3 } rect { x0: 0 y0: 0 x1: 1000 y1: 1000 }"),
     ("verify", 2, "VerifyRequest", 'world_name: "default" rect { x0: 10 y0: 10 x1: 50 y1: 60 }'),

@@ -9,13 +9,15 @@
 //   - an accepted rectangle round-trips through its message bit for bit;
 //   - an accepted GetPoints rectangle small enough to generate cheaply
 //     (kGenerateSide) yields points inside it, which survive the trip
-//     through a Points message and back.
+//     through a Points message and back, in the request's encoding too
+//     (exact: bit for bit; quantised: the same ids).
 #include <boost/asio/thread_pool.hpp>
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "encoded_points.h"
 #include "fuzz/fuzz_check.h"
 #include "noise_messages.h"
 #include "scallop/noise/noise_grid.h"
@@ -94,6 +96,8 @@ void FuzzGetPoints(const v1::GetPointsRequest& request) {
   }
   CheckRefusalOrWorld(request, status, "GetPoints");
   if (!status.ok()) return;
+  const StatusOr<PointEncoding> encoding = PointEncodingFromMessage(request.encoding());
+  if (!encoding.ok()) return CheckNamesField(ToGrpcStatus(encoding.status()), "GetPoints");
   CheckRectRoundTrip(rect);
   const double side = kGenerateSide * world.min_distance();
   if (!(rect.Width() <= side && rect.Height() <= side)) return;
@@ -107,6 +111,19 @@ void FuzzGetPoints(const v1::GetPointsRequest& request) {
   for (const Vec2& p : back.positions) {
     SCALLOP_FUZZ_CHECK(p.x >= rect.x0 && p.x < rect.x1 && p.y >= rect.y0 && p.y < rect.y1,
                        "a point outside its rectangle");
+  }
+  // The encoding asked for (docs/wire.md): exact gives the same bits, any
+  // gives the same ids.
+  v1::Points encoded;
+  AppendPoints(*points, 0, points->positions.size(), encoded, world, *encoding);
+  PlanePoints decoded;
+  SCALLOP_FUZZ_CHECK(ReadPoints(encoded, decoded).ok() && decoded.ids == points->ids,
+                     "encoded points do not round-trip");
+  if (*encoding == PointEncoding::kQuantised) return;
+  for (size_t k = 0; k < decoded.positions.size(); ++k) {
+    SCALLOP_FUZZ_CHECK(SameBits(decoded.positions[k].x, points->positions[k].x) &&
+                           SameBits(decoded.positions[k].y, points->positions[k].y),
+                       "an exact encoding changed a coordinate");
   }
 }
 

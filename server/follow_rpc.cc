@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "encoded_points.h"
 #include "scallop/plane/viewport_tracker.h"
 #include "server/admitted_stream.h"
 #include "server/follow_prefetch.h"
 #include "server/scallop_service.h"
 #include "server/stall_timer.h"
 #include "server/status_mapping.h"
-#include "world_messages.h"
 
 namespace scallop::server {
 namespace {
@@ -35,6 +35,12 @@ ViewportUpdate UpdateFromMessage(const v1::FollowRequest& request) {
 void SetKey(RegionKey key, v1::RegionKey& message) {
   message.set_i(key.i);
   message.set_j(key.j);
+}
+
+// Whether the message's value names `encoding` (PACKED and UNSPECIFIED alike).
+bool SameEncoding(int value, PointEncoding encoding) {
+  const StatusOr<PointEncoding> named = PointEncodingFromMessage(value);
+  return named.ok() && *named == encoding;
 }
 
 }  // namespace
@@ -133,8 +139,8 @@ class FollowReactor final
     for (size_t n = 0; n < chunks->size(); ++n) {
       const RegionChunk& chunk = (*chunks)[n];
       v1::PointsChunk& message = *answer_[n].mutable_chunk();
-      AppendPoints(chunk.points, 0, chunk.points.ids.size(), *message.mutable_points(),
-                   world_.radius_field());
+      AppendPoints(chunk.points, 0, chunk.points.ids.size(), *message.mutable_points(), world_,
+                   encoding_);
       message.set_region_i(chunk.key.i);
       message.set_region_j(chunk.key.j);
       log_.add_points(static_cast<int64_t>(chunk.points.ids.size()));
@@ -155,6 +161,9 @@ class FollowReactor final
       if (grpc::Status status = shared_.worlds.Resolve(request_, resolved); !status.ok()) {
         return status;
       }
+      StatusOr<PointEncoding> encoding = PointEncodingFromMessage(request_.encoding());
+      if (!encoding.ok()) return ToGrpcStatus(encoding.status());
+      encoding_ = *encoding;
       world_ = resolved.world;
       log_.set_world(world_.Describe());
       tracker_.emplace(world_);
@@ -162,6 +171,11 @@ class FollowReactor final
     } else if (request_.world_choice_case() != v1::FollowRequest::WORLD_CHOICE_NOT_SET) {
       return {grpc::StatusCode::INVALID_ARGUMENT,
               "world: set only in the first message of a Follow call (world or world_name)"};
+    } else if (request_.encoding() != v1::POINT_ENCODING_UNSPECIFIED &&
+               !SameEncoding(request_.encoding(), encoding_)) {
+      return {grpc::StatusCode::INVALID_ARGUMENT,
+              "encoding: the first message of a Follow call sets it for the call; later "
+              "messages leave it unset or repeat it"};
     }
     if (!request_.has_viewport()) {
       return {grpc::StatusCode::INVALID_ARGUMENT,
@@ -190,10 +204,11 @@ class FollowReactor final
   const std::shared_ptr<const std::string> idle_message_;
   StallTimer timer_;  // one wait at a time: a write, or the next update
   World world_;
-  std::optional<ViewportTracker> tracker_;  // set by the first update
-  std::optional<FollowPrefetch> prefetch_;  // set by the first update
-  v1::FollowRequest request_;               // the update being read or answered
-  std::vector<v1::FollowResponse> answer_;  // the messages of the current answer
+  PointEncoding encoding_ = PointEncoding::kPacked;  // set by the first update
+  std::optional<ViewportTracker> tracker_;           // set by the first update
+  std::optional<FollowPrefetch> prefetch_;           // set by the first update
+  v1::FollowRequest request_;                        // the update being read or answered
+  std::vector<v1::FollowResponse> answer_;           // the messages of the current answer
   size_t next_message_ = 0;
 };
 

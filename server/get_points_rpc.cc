@@ -1,13 +1,14 @@
-// GetPoints: one page of a rectangle's points, as packed arrays, with a
-// tamper-evident token for the next page. Answered on gRPC's thread when the
-// rectangle's regions are all cached, on the request pool otherwise.
+// GetPoints: one page of a rectangle's points, as packed arrays (or encoded
+// as the request asks, docs/wire.md), with a tamper-evident token for the
+// next page. Answered on gRPC's thread when the rectangle's regions are all
+// cached, on the request pool otherwise.
 #include <algorithm>
 
+#include "encoded_points.h"
 #include "server/region_warmup.h"
 #include "server/request_cost.h"
 #include "server/scallop_service.h"
 #include "server/status_mapping.h"
-#include "world_messages.h"
 
 namespace scallop::server {
 
@@ -42,6 +43,8 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
                         "page_size: must be >= 0 (0 means max_page_size, " +
                             std::to_string(shared_.config.max_page_size) + ")");
   }
+  StatusOr<PointEncoding> encoding = PointEncodingFromMessage(request.encoding());
+  if (!encoding.ok()) return ToGrpcStatus(encoding.status());
   const size_t page_size = request.page_size() == 0
                                ? shared_.config.max_page_size
                                : std::min(request.page_size(), shared_.config.max_page_size);
@@ -67,17 +70,17 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
   } else {
     return std::nullopt;
   }
-  // Straight into the packed arrays, with room for the page: one copy.
+  // Straight into the packed arrays (or the encoded regions), with room for
+  // the page: one copy.
   size_t upper_bound = 0;
   for (const RegionHandle& region : regions) upper_bound += region->points.size();
   v1::Points& points = *response.mutable_points();
   const size_t end = offset + page_size;
   size_t total = 0;
-  {
-    PointsAppender appender(points, std::min(upper_bound, page_size), world.radius_field());
+  WritePoints(points, *encoding, world, std::min(upper_bound, page_size), [&](auto& appender) {
     total = VisitPoints(regions, RegionLayout(world), rect, offset, end,
                         [&](const Vec2& position, uint64_t id) { appender.Append(position, id); });
-  }
+  });
   if (offset > total) {
     response.clear_points();
     return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
@@ -85,7 +88,7 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
   }
   if (end < total) response.set_next_page_token(shared_.page_tokens.Encode(world, rect, end));
   *response.mutable_world() = shared_.worlds.ToMessage(world);
-  log.add_points(points.ids_size());
+  log.add_points(static_cast<int64_t>(std::min(total, end) - std::min(total, offset)));
   return grpc::Status::OK;
 }
 

@@ -5,13 +5,13 @@
 // stream_stall_seconds ends the call (DEADLINE_EXCEEDED), freeing its slot.
 #include <boost/asio/post.hpp>
 
+#include "encoded_points.h"
 #include "scallop/plane/query_rect.h"
 #include "scallop/plane/region_layout.h"
 #include "server/admitted_stream.h"
 #include "server/scallop_service.h"
 #include "server/stall_timer.h"
 #include "server/status_mapping.h"
-#include "world_messages.h"
 
 namespace scallop::server {
 
@@ -59,6 +59,9 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
         !status.ok()) {
       return status;
     }
+    StatusOr<PointEncoding> encoding = PointEncodingFromMessage(request.encoding());
+    if (!encoding.ok()) return ToGrpcStatus(encoding.status());
+    encoding_ = *encoding;
     range_ = RegionsOverlapping(RegionLayout(world_), rect_);
     next_ = range_.low;
     return grpc::Status::OK;
@@ -95,7 +98,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
       }
       if (points->ids.empty()) continue;
       chunk_.Clear();
-      AppendPoints(*points, 0, points->ids.size(), *chunk_.mutable_points(), world_.radius_field());
+      AppendPoints(*points, 0, points->ids.size(), *chunk_.mutable_points(), world_, encoding_);
       chunk_.set_region_i(key.i);
       chunk_.set_region_j(key.j);
       log_.add_points(static_cast<int64_t>(points->ids.size()));
@@ -112,6 +115,7 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
   StallTimer timer_;  // watches the pending write
   World world_;
   Rect rect_;
+  PointEncoding encoding_ = PointEncoding::kPacked;
   RegionRange range_;
   RegionKey next_;
   v1::PointsChunk chunk_;  // the chunk being written; reused, alive until OnWriteDone

@@ -25,6 +25,7 @@ struct FollowArguments {
   RemoteArguments remote;
   std::string path;
   double keep_margin = 0;
+  v1::PointEncoding encoding = v1::POINT_ENCODING_UNSPECIFIED;
 };
 
 // The path's rectangles; blank lines and lines starting with '#' are skipped.
@@ -48,6 +49,7 @@ int RunFollow(const FollowArguments& arguments) {
   if (Status status = SetRequestWorld(arguments.remote, arguments.world, first); !status.ok()) {
     return ReportBadArguments("follow", status);
   }
+  first.set_encoding(arguments.encoding);
   StatusOr<std::vector<Rect>> path = ReadPath(arguments.path);
   if (!path.ok()) return ReportBadArguments("follow", path.status());
   StatusOr<client::ScallopClient> connected =
@@ -62,16 +64,25 @@ int RunFollow(const FollowArguments& arguments) {
     *request.mutable_viewport() = RectToMessage((*path)[step]);
     request.set_keep_margin(arguments.keep_margin);
     int64_t points = 0, bytes = 0, messages = 0, evicted = 0;
+    Status malformed;
     const auto start = std::chrono::steady_clock::now();
     const grpc::Status status = session.Update(request, [&](const v1::FollowResponse& response) {
       ++messages;
       bytes += static_cast<int64_t>(response.ByteSizeLong());
       evicted += response.evicted_size();
-      points += csv.Write(response.chunk().points());
+      StatusOr<int> written = csv.Write(response.chunk().points());
+      if (written.ok()) {
+        points += *written;
+      } else if (malformed.ok()) {
+        malformed = written.status();
+      }
     });
     const double milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (!status.ok()) return ReportCallFailure("follow", status);
+    if (!malformed.ok()) {
+      return ReportCallFailure("follow", {grpc::StatusCode::INTERNAL, malformed.message()});
+    }
     total_points += points;
     total_bytes += bytes;
     std::cerr << "step " << step + 1 << ": " << points << " points, " << bytes << " bytes, "
@@ -102,6 +113,7 @@ CommandRunner RegisterFollow(CLI::App& app) {
       ->add_option("--keep-margin", arguments->keep_margin,
                    "Keep regions within this distance of the viewport (world units)")
       ->capture_default_str();
+  AddEncodingOption(*command, arguments->encoding);
   return [arguments] { return RunFollow(*arguments); };
 }
 

@@ -18,6 +18,7 @@ struct PointsArguments {
   PointFormat format = PointFormat::kCsv;
   bool seams = false;
   int page_size = 0;
+  v1::PointEncoding encoding = v1::POINT_ENCODING_UNSPECIFIED;
 };
 
 int RunPoints(const PointsArguments& arguments) {
@@ -27,6 +28,7 @@ int RunPoints(const PointsArguments& arguments) {
     return ReportBadArguments("points", status);
   }
   request.set_page_size(arguments.page_size);
+  request.set_encoding(arguments.encoding);
   StatusOr<client::ScallopClient> connected =
       ConnectTo(arguments.remote.server, arguments.remote.connection);
   if (!connected.ok()) return ReportBadArguments("points", connected.status());
@@ -55,6 +57,7 @@ CommandRunner RegisterPoints(CLI::App& app) {
   AddFormatAndSeamsOptions(*command, arguments->format, arguments->seams);
   command->add_option("--page-size", arguments->page_size, "Points per page (0: server's maximum)")
       ->check(CLI::NonNegativeNumber);
+  AddEncodingOption(*command, arguments->encoding);
   return [arguments] { return RunPoints(*arguments); };
 }
 

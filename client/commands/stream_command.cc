@@ -18,6 +18,7 @@ struct StreamArguments {
   RemoteArguments remote;
   PointFormat format = PointFormat::kCsv;
   bool seams = false;
+  v1::PointEncoding encoding = v1::POINT_ENCODING_UNSPECIFIED;
 };
 
 int RunStream(const StreamArguments& arguments) {
@@ -26,6 +27,7 @@ int RunStream(const StreamArguments& arguments) {
       !status.ok()) {
     return ReportBadArguments("stream", status);
   }
+  request.set_encoding(arguments.encoding);
   StatusOr<client::ScallopClient> connected =
       ConnectTo(arguments.remote.server, arguments.remote.connection);
   if (!connected.ok()) return ReportBadArguments("stream", connected.status());
@@ -43,8 +45,9 @@ int RunStream(const StreamArguments& arguments) {
           malformed = ReadPoints(chunk.points(), points, &radii);
           return malformed.ok();
         }
-        csv.Write(chunk.points());
-        return true;
+        StatusOr<int> written = csv.Write(chunk.points());
+        if (!written.ok()) malformed = written.status();
+        return written.ok();
       },
       options);
   if (!status.ok()) return ReportCallFailure("stream", status);
@@ -71,6 +74,7 @@ CommandRunner RegisterStream(CLI::App& app) {
   AddWorldOptions(*command, arguments->world);
   AddRemoteOptions(*command, arguments->remote);
   AddFormatAndSeamsOptions(*command, arguments->format, arguments->seams);
+  AddEncodingOption(*command, arguments->encoding);
   return [arguments] { return RunStream(*arguments); };
 }
 

@@ -1,6 +1,9 @@
 // Registration of the remote options and the call options they give.
 #include "client/options/remote_options.h"
 
+#include <map>
+#include <string>
+
 namespace scallop::cli {
 
 void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server_optional) {
@@ -41,6 +44,19 @@ StatusOr<v1::World> RemoteWorld(const WorldArguments& world) {
   v1::World message = WorldToMessage(*parsed);
   *message.mutable_radius_field() = std::move(**field);
   return message;
+}
+
+void AddEncodingOption(CLI::App& command, v1::PointEncoding& encoding) {
+  const std::map<std::string, v1::PointEncoding> encodings{
+      {"packed", v1::POINT_ENCODING_PACKED},
+      {"exact", v1::POINT_ENCODING_EXACT},
+      {"quantised", v1::POINT_ENCODING_QUANTISED}};
+  command
+      .add_option("--encoding", encoding,
+                  "How points travel: packed (24 bytes a point), exact (the same doubles, 8-15 "
+                  "bytes) or quantised (2^-13 d, about 4.3 bytes); docs/wire.md")
+      ->transform(CLI::CheckedTransformer(encodings, CLI::ignore_case))
+      ->option_text("packed|exact|quantised (default packed)");
 }
 
 client::CallOptions CallOptionsFor(const RemoteArguments& arguments) {

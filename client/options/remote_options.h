@@ -29,6 +29,11 @@ void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server
 
 client::CallOptions CallOptionsFor(const RemoteArguments& arguments);
 
+// Adds --encoding packed|exact|quantised (docs/wire.md) to a command that
+// fetches points: how they travel, not what is printed, since the client
+// library decodes them (quantised ones within 2^-13 d of the true points).
+void AddEncodingOption(CLI::App& command, v1::PointEncoding& encoding);
+
 // The inline world a request to scallopd carries, from --seed, --min-distance,
 // --algorithm and --density, or with a radius field (a raster by the name the
 // server loaded it under). Checked here as far as the client can (all but a

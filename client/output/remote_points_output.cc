@@ -2,20 +2,25 @@
 #include "client/output/remote_points_output.h"
 
 #include <iomanip>
+#include <vector>
+
+#include "world_messages.h"
 
 namespace scallop::cli {
 
-int IncrementalCsv::Write(const v1::Points& points) {
-  const int count = std::min({points.xs_size(), points.ys_size(), points.ids_size()});
+StatusOr<int> IncrementalCsv::Write(const v1::Points& points) {
+  PlanePoints decoded;
+  std::vector<double> radii;
+  if (Status status = ReadPoints(points, decoded, &radii); !status.ok()) return status;
+  const auto count = static_cast<int>(decoded.ids.size());
   if (count == 0) return 0;
-  const bool radii = points.radii_size() == count;
   if (!header_written_) {
-    out_ << std::setprecision(17) << CsvHeader(true, radii);
+    out_ << std::setprecision(17) << CsvHeader(true, !radii.empty());
     header_written_ = true;
   }
   for (int k = 0; k < count; ++k) {
-    out_ << points.ids(k) << ',' << points.xs(k) << ',' << points.ys(k);
-    if (radii) out_ << ',' << points.radii(k);
+    out_ << decoded.ids[k] << ',' << decoded.positions[k].x << ',' << decoded.positions[k].y;
+    if (!radii.empty()) out_ << ',' << radii[k];
     out_ << '\n';
   }
   return count;

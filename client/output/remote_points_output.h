@@ -47,8 +47,9 @@ grpc::Status WriteRemotePoints(client::ScallopClient& client, const Request& req
 class IncrementalCsv {
  public:
   IncrementalCsv(std::ostream& out, bool field_world) : out_(out), field_world_(field_world) {}
-  // Writes the rows of `points`; returns how many.
-  int Write(const v1::Points& points);
+  // Writes the rows of `points` (packed or encoded); returns how many.
+  // INVALID_ARGUMENT, nothing written, for a malformed message (ReadPoints).
+  StatusOr<int> Write(const v1::Points& points);
   void Finish();
 
  private:

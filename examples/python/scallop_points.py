@@ -12,6 +12,11 @@ With --tls-ca (and --tls-cert/--tls-key for mutual TLS) it speaks TLS; a
 token from --token-file or the SCALLOP_TOKEN environment variable (kept out
 of shell history) goes with every call as "authorization: Bearer TOKEN".
 
+--encoding exact or quantised asks for the compact encodings of
+docs/wire.md (decode_points below decodes them: exact gives the same
+doubles, quantised coordinates within 2^-13 d); packed, the default, is the
+plain arrays.
+
 --server takes HOST:PORT or any gRPC target (dns:///HOST:PORT,
 ipv4:A:PORT,B:PORT): calls are balanced round_robin over its addresses and
 the idempotent calls (GetPoints here) retried on UNAVAILABLE, with the
@@ -23,7 +28,9 @@ service config of the C++ client library (SERVICE_CONFIG).
 """
 import argparse
 import json
+import math
 import os
+import struct
 import sys
 
 import grpc
@@ -34,6 +41,12 @@ ALGORITHMS = {
     "a1": scallop_pb2.ALGORITHM_A1,
     "a2": scallop_pb2.ALGORITHM_A2,
     "a3": scallop_pb2.ALGORITHM_A3,
+}
+
+ENCODINGS = {
+    "packed": scallop_pb2.POINT_ENCODING_PACKED,
+    "exact": scallop_pb2.POINT_ENCODING_EXACT,
+    "quantised": scallop_pb2.POINT_ENCODING_QUANTISED,
 }
 
 
@@ -71,6 +84,8 @@ def parse_arguments(argv):
     parser.add_argument("--rect", required=True, help="X0,Y0,X1,Y1 (half-open)")
     parser.add_argument("--stream", action="store_true", help="use StreamPoints")
     parser.add_argument("--page-size", type=int, default=0)
+    parser.add_argument("--encoding", choices=sorted(ENCODINGS), default="packed",
+                        help="how points travel (docs/wire.md)")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per call")
     parser.add_argument("--tls-ca", help="PEM roots that sign the server (turns TLS on)")
     parser.add_argument("--tls-cert", help="PEM client certificate, for mutual TLS")
@@ -144,12 +159,67 @@ def parse_rect(text):
     return scallop_pb2.Rect(x0=values[0], y0=values[1], x1=values[2], y1=values[3])
 
 
+SIGN = 1 << 63
+MASK64 = (1 << 64) - 1
+
+
+def ordered_bits(value):
+    """A double's bits mapped monotonically onto 0..2^64-1 (EncodedRegion in the proto)."""
+    bits = struct.unpack("<Q", struct.pack("<d", value))[0]
+    return ~bits & MASK64 if bits & SIGN else bits | SIGN
+
+
+def from_ordered_bits(bits):
+    bits = bits & ~SIGN if bits & SIGN else ~bits & MASK64
+    return struct.unpack("<d", struct.pack("<Q", bits))[0]
+
+
+def decode_axis(data, width, edge, side, quantised):
+    """One axis of an EncodedRegion: offsets of `width` bytes from the low edge."""
+    offsets = [int.from_bytes(data[k:k + width], "little") for k in range(0, len(data), width)]
+    if quantised:
+        quantum = math.ldexp(side, -8 * width)
+        return [edge + (cell + 0.5) * quantum for cell in offsets]
+    base = ordered_bits(edge)
+    return [from_ordered_bits((base + offset) & MASK64) for offset in offsets]
+
+
+def decode_points(points):
+    """(ids, xs, ys) of a Points message: its packed arrays, or its encoded regions decoded."""
+    if not points.HasField("encoded"):
+        return list(points.ids), list(points.xs), list(points.ys)
+    encoded = points.encoded
+    side, b = encoded.region_side, encoded.id_index_bits
+    g = (64 - b) // 2
+    quantised = encoded.encoding == scallop_pb2.POINT_ENCODING_QUANTISED
+    ids, xs, ys = [], [], []
+    for region in encoded.regions:
+        runs = list(region.index_runs)
+        first_id = (region.i % (1 << g)) << (g + b) | (region.j % (1 << g)) << b
+        index = 0
+        for skip, take in zip(runs[0::2], runs[1::2]):
+            index += skip
+            ids.extend(first_id | k for k in range(index, index + take))
+            index += take
+        # The low edges as the server computes them: i * S, one double product.
+        region_xs = decode_axis(region.x_offsets, region.x_offset_bytes, float(region.i) * side,
+                                side, quantised)
+        region_ys = decode_axis(region.y_offsets, region.y_offset_bytes, float(region.j) * side,
+                                side, quantised)
+        if len(runs) % 2 or not len(region_xs) == len(region_ys) == len(ids) - len(xs):
+            raise ValueError(f"malformed encoded region ({region.i}, {region.j})")
+        xs.extend(region_xs)
+        ys.extend(region_ys)
+    return ids, xs, ys
+
+
 def points_of_pages(stub, arguments, rect):
     """Every page of GetPoints, following next_page_token."""
     token = ""
     while True:
         response = stub.GetPoints(scallop_pb2.GetPointsRequest(
             rect=rect, page_size=arguments.page_size, page_token=token,
+            encoding=ENCODINGS[arguments.encoding],
             **world_choice(arguments)), timeout=arguments.timeout,
             metadata=arguments.metadata)
         yield response.points
@@ -160,7 +230,8 @@ def points_of_pages(stub, arguments, rect):
 
 def points_of_stream(stub, arguments, rect):
     """The chunks of StreamPoints, one region each."""
-    request = scallop_pb2.StreamPointsRequest(rect=rect, **world_choice(arguments))
+    request = scallop_pb2.StreamPointsRequest(
+        rect=rect, encoding=ENCODINGS[arguments.encoding], **world_choice(arguments))
     for chunk in stub.StreamPoints(request, timeout=arguments.timeout,
                                    metadata=arguments.metadata):
         yield chunk.points
@@ -183,21 +254,25 @@ def main(argv):
         header = None
         try:
             for points in read(stub, arguments, rect):
-                if not points.ids:
+                ids, xs, ys = decode_points(points)
+                if not ids:
                     continue
                 if header is None:  # a field world's points carry radii
                     header = "id,x,y,r\n" if points.radii else "id,x,y\n"
                     out.write(header)
                 if points.radii:
-                    for point_id, x, y, r in zip(points.ids, points.xs, points.ys, points.radii):
+                    for point_id, x, y, r in zip(ids, xs, ys, points.radii):
                         out.write(f"{point_id},{x:.17g},{y:.17g},{r:.17g}\n")
                 else:
-                    for point_id, x, y in zip(points.ids, points.xs, points.ys):
+                    for point_id, x, y in zip(ids, xs, ys):
                         out.write(f"{point_id},{x:.17g},{y:.17g}\n")
             if header is None:
                 out.write("id,x,y,r\n" if arguments.radius_noise else "id,x,y\n")
         except grpc.RpcError as error:
             print(f"scallop_points: {error.code().name}: {error.details()}", file=sys.stderr)
+            return 1
+        except ValueError as error:
+            print(f"scallop_points: INTERNAL: {error}", file=sys.stderr)
             return 1
     return 0
 

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "encoded_points.h"
 #include "field_messages.h"
 
 namespace scallop {
@@ -115,7 +116,29 @@ PointsAppender::~PointsAppender() {
   if (field_ != nullptr) message_.mutable_radii()->Truncate(size);
 }
 
+namespace {
+
+// Points.encoded, decoded; radii as long as the points decoded.
+Status ReadEncoded(const v1::Points& message, PlanePoints& points, std::vector<double>* radii) {
+  if (message.xs_size() != 0 || message.ys_size() != 0 || message.ids_size() != 0) {
+    return InvalidArgument("points: encoded and the packed xs, ys, ids are both set");
+  }
+  const size_t before = points.ids.size();
+  if (Status status = ReadEncodedPoints(message.encoded(), points); !status.ok()) return status;
+  const size_t count = points.ids.size() - before;
+  if (message.radii_size() != 0 && static_cast<size_t>(message.radii_size()) != count) {
+    points.positions.resize(before);
+    points.ids.resize(before);
+    return InvalidArgument("points: radii must be empty or one per encoded point");
+  }
+  if (radii != nullptr) radii->insert(radii->end(), message.radii().begin(), message.radii().end());
+  return Status::Ok();
+}
+
+}  // namespace
+
 Status ReadPoints(const v1::Points& message, PlanePoints& points, std::vector<double>* radii) {
+  if (message.has_encoded()) return ReadEncoded(message, points, radii);
   if (message.xs_size() != message.ys_size() || message.xs_size() != message.ids_size()) {
     return InvalidArgument("points: xs, ys and ids must have the same length");
   }

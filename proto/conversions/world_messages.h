@@ -79,8 +79,11 @@ class PointsAppender {
 };
 
 // The message's points appended to `points`, and its radii to `radii` when
-// given. INVALID_ARGUMENT when xs, ys and ids differ in length, or radii is
-// neither empty nor as long (a malformed message).
+// given, from the packed arrays or, when set, decoded from encoded
+// (encoded_points.h), so callers need not know which the request asked for.
+// INVALID_ARGUMENT when xs, ys and ids differ in length, radii is neither
+// empty nor one per point, both encoded and the packed arrays are set, or
+// encoded is malformed (naming its field).
 Status ReadPoints(const v1::Points& message, PlanePoints& points,
                   std::vector<double>* radii = nullptr);
 

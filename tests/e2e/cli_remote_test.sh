@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end checks of the CLI's server commands against a real scallopd:
 # `scallop points` and `scallop stream` print exactly what `scallop plane`
-# prints, the formats, and the exit codes (0 ok, 1 server error, 2 bad args).
+# prints (in every --encoding), the formats, and the exit codes (0 ok, 1
+# server error, 2 bad args).
 # Usage: cli_remote_test.sh path/to/scallop path/to/scallopd
 set -euo pipefail
 
@@ -124,6 +125,19 @@ for rect in 0,0,40,30 3,1,43,31 1000,0,1040,30 -20,-20,60,50; do
 done | sort -u >"$work/plane.sorted"
 if [ -s "$work/plane.sorted" ] && cmp -s "$work/follow.sorted" "$work/plane.sorted"; then pass; else fail "follow CSV differs from plane over the path"; fi
 if [ "$(grep -c '^step [0-9]*: [0-9]* points, [0-9]* bytes, .* ms$' "$work/err")" -eq 5 ]; then pass; else fail "follow per-step report: $(cat "$work/err")"; fi
+# --encoding: exact prints the same text for points, stream and follow (the
+# library decodes it); quantised the same ids; an unknown name exits 2.
+for command in "points --page-size 113" stream; do
+  read -ra words <<<"$command"
+  run "$scallop" "${words[@]}" --server "$server" --seed 7 --rect "$rect" --encoding exact
+  if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "$command --encoding exact differs from plane"; fi
+  run "$scallop" "${words[@]}" --server "$server" --seed 7 --rect "$rect" --encoding quantised
+  if [ "$(cut -d, -f1 "$work/out")" = "$(cut -d, -f1 "$work/plane.csv")" ]; then pass; else fail "$command --encoding quantised: other ids"; fi
+done
+run "$scallop" follow --server "$server" --seed 7 --path "$work/path" --keep-margin 4 --encoding exact
+if [ "$(tail -n +2 "$work/out" | sort -u)" = "$(cat "$work/follow.sorted")" ]; then pass; else fail "follow --encoding exact differs"; fi
+run "$scallop" points --server "$server" --seed 7 --rect "$rect" --encoding zip
+expect_status 2 "--encoding zip"
 printf '0,0,10,10\n5,0,1,1\n' >"$work/bad-path"
 run "$scallop" follow --server "$server" --seed 7 --path "$work/bad-path"
 expect_status 2 "follow bad path line"

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The Python example client (examples/python) against a real scallopd: stubs
 # generated from our proto with Debian's tools, then its CSV compared byte for
-# byte with `scallop plane` for paged, streamed, inline and named worlds and
-# over mutual TLS with a token; a bad rectangle, a refused handshake and a
+# byte with `scallop plane` for paged, streamed, inline and named worlds, in
+# the compact encodings, and over mutual TLS with a token; a bad rectangle, a refused handshake and a
 # missing or wrong token reported with exit 1.
 # Usage: python_client_test.sh SCALLOP_CLI SCALLOPD SOURCE_DIR
 set -euo pipefail
@@ -41,6 +41,35 @@ compare "A2 with density" "--seed 3 --algorithm a2 --density 1.5 --rect=100,100,
   "--seed 3 --algorithm a2 --density 1.5 --rect 100,100,140,150"
 compare "noise radius field" "--seed 5 --radius-noise 1,3,0.02 --radius-noise-seed 2 --rect=-20,-20,30,30" \
   "--seed 5 --radius-noise 1,3,0.02 --radius-noise-seed 2 --rect -20,-20,30,30"
+# The compact encodings (docs/wire.md): exact is byte for byte the plain
+# CSV, paged and streamed, at the origin (8-byte offsets, -0.0's region),
+# at -1e9 and 1e9 and for a field world; quantised has the same ids and
+# coordinates within 2^-13 d, and is byte for byte what the C++ library
+# decodes from the same answer (so both follow the proto's formula).
+compare "exact, paged" "--seed 7 --encoding exact --page-size 97 --rect=-20,-20,30,30" \
+  "--seed 7 --rect -20,-20,30,30"
+compare "exact, streamed, far" "--seed 7 --encoding exact --stream --rect=-1e9,1e9,-999999950,1000000040" \
+  "--seed 7 --rect -1e9,1e9,-999999950,1000000040"
+compare "exact, field world" "--seed 5 --radius-noise 1,3,0.02 --encoding exact --stream --rect=1e9,-30,1000000050,20" \
+  "--seed 5 --radius-noise 1,3,0.02 --rect 1e9,-30,1000000050,20"
+for rect in -20,-20,30,30 1e9,-1e9,1000000050,-999999950; do
+  client --seed 7 --encoding quantised --page-size 50 --rect="$rect" >"$work/quantised.csv"
+  "$cli" points --server "$address" --seed 7 --encoding quantised --rect "$rect" >"$work/cpp-quantised.csv"
+  "$cli" plane --seed 7 --rect "$rect" >"$work/plane.csv"
+  cmp -s "$work/quantised.csv" "$work/cpp-quantised.csv" ||
+    { echo "python client, quantised $rect: differs from the C++ library's decoding"; exit 1; }
+  "$python" - "$work/quantised.csv" "$work/plane.csv" <<'PYTHON'
+import sys
+rows = [[line.split(",") for line in open(path).read().split()[1:]] for path in sys.argv[1:]]
+quantised, plane = rows
+if [r[0] for r in quantised] != [r[0] for r in plane] or len(plane) < 100:
+    sys.exit("python client, quantised: other ids than scallop plane")
+worst = max(abs(float(a) - float(b)) for q, p in zip(quantised, plane) for a, b in zip(q[1:], p[1:]))
+# 2^-13 d (d = 1), plus 2^-23 for the decoding sum's rounding at 1e9.
+if worst > 2**-13 + 2**-22 or worst == 0:
+    sys.exit(f"python client, quantised: worst error {worst}")
+PYTHON
+done
 
 # gRPC targets: a name resolved by DNS, two addresses balanced round_robin.
 port=${address##*:}
@@ -90,4 +119,4 @@ expect_failure "TLS without a client certificate" UNAVAILABLE --tls-ca "$work/ca
 expect_failure "no token" UNAUTHENTICATED "${tls_args[@]}"
 expect_failure "a wrong token" UNAUTHENTICATED "${tls_args[@]}" --token-file "$work/wrong-token"
 kill "$secure_pid"
-echo "python client: the comparisons with scallop plane (a noise field among them), the service config and 4 error cases passed"
+echo "python client: the comparisons with scallop plane (a noise field and the encodings among them), the service config and 4 error cases passed"
