@@ -267,7 +267,6 @@ class FieldRun {
     };
     const Rect centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1), 0.5 * (c.x0 + c.x1),
                       0.5 * (c.y0 + c.y1)};
-    // A coverer q has |centre - q| < max(R(q), r_low): cells whose radii cannot reach are skipped.
     return grid_.AnyNear(centre, remember) || grid_.AnyNear(Grown(centre, reach), remember);
   }
 
