@@ -178,6 +178,8 @@ StatusOr<RadiusField> RadiusField::Create(const RadiusFieldSpec& spec) {
       break;
     case RadiusFieldKind::kNoise:
       field.slope_ = NoiseSlope(spec);
+      for (int k = 0; k < spec.octaves; ++k)
+        field.octave_seeds_[k] = OctaveSeed(spec.noise_seed, k);
       h = HashWords({h, spec.noise_seed, std::bit_cast<uint64_t>(spec.frequency),
                      static_cast<uint64_t>(spec.octaves), std::bit_cast<uint64_t>(spec.gain)});
       field.spec_.raster = nullptr;
@@ -236,9 +238,11 @@ double RadiusField::Evaluate(Vec2 x) const {
     case RadiusFieldKind::kConstant:
       return spec_.r_min;
     case RadiusFieldKind::kNoise: {
-      const double n =
-          FractalValueNoise(spec_.noise_seed, spec_.frequency, spec_.octaves, spec_.gain, x.x, x.y);
-      return spec_.r_min + (spec_.r_max - spec_.r_min) * n;
+      // FractalValueNoise with the octave seeds hashed once, at Create: the same bits.
+      const double n = FractalSum(
+          spec_.frequency, spec_.octaves, spec_.gain, x.x, x.y,
+          [&](int k, double xs, double ys) { return ValueNoiseOctave(octave_seeds_[k], xs, ys); });
+      return NoiseRadius(n);
     }
     case RadiusFieldKind::kRaster:
       return EvaluateRaster(x);
@@ -277,11 +281,15 @@ double RadiusField::EvaluateRaster(Vec2 x) const {
 
 RadiusInterval RadiusField::Bounds(const Rect& r) const {
   if (spec_.kind == RadiusFieldKind::kConstant) return {spec_.r_min, spec_.r_max};
-  const Vec2 c{0.5 * (r.x0 + r.x1), 0.5 * (r.y0 + r.y1)};
+  return BoundsAround(r, Evaluate({0.5 * (r.x0 + r.x1), 0.5 * (r.y0 + r.y1)}));
+}
+
+RadiusInterval RadiusField::BoundsAround(const Rect& r, double centre_radius) const {
+  if (spec_.kind == RadiusFieldKind::kConstant) return {spec_.r_min, spec_.r_max};
   const double half_diagonal = 0.5 * std::sqrt(r.Width() * r.Width() + r.Height() * r.Height());
   const double slack = slope_ * half_diagonal * (1.0 + 1e-12) + 1e-12 * spec_.r_max;
-  const double rc = Evaluate(c);
-  return {std::max(spec_.r_min, rc - slack), std::min(spec_.r_max, rc + slack)};
+  return {std::max(spec_.r_min, centre_radius - slack),
+          std::min(spec_.r_max, centre_radius + slack)};
 }
 
 bool RadiusField::IsMasked(Vec2 x) const {

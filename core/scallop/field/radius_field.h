@@ -3,12 +3,14 @@
 // interval bounds, a Lipschitz bound, raster masks and a fingerprint. See docs/design.md.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string_view>
 #include <vector>
 
 #include "scallop/base/status.h"
+#include "scallop/field/value_noise.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
 
@@ -98,6 +100,10 @@ class RadiusField {
   // NaN give some value in [r_min, r_max] (never undefined behaviour).
   double Evaluate(Vec2 x) const;
 
+  // A noise field's R for fractal noise n in [0, 1]: r_min + (r_max - r_min) n, the last step of
+  // Evaluate (FieldEvaluator ends with it too). O(1).
+  double NoiseRadius(double n) const { return spec_.r_min + (spec_.r_max - spec_.r_min) * n; }
+
   // L with |R(x) - R(y)| <= L |x - y| for all x, y (0 for a constant): noise from the fade's
   // slope (value_noise.h), raster from the largest step between neighbouring pixels over the
   // pixel size. Rounding of Evaluate may exceed it by ~1e-15 r_max, which Bounds absorbs.
@@ -106,6 +112,13 @@ class RadiusField {
   // Bounds of R over the closed rectangle: R(centre) -+ (L * half diagonal + 1e-12 r_max),
   // clipped to [r_min, r_max]. Conservative (certificates rely on it). O(one Evaluate).
   RadiusInterval Bounds(const Rect& r) const;
+  // The same bounds given R at the rectangle's centre (from Evaluate or FieldEvaluator), so that
+  // a caller with a faster evaluator gets the same bits. O(1).
+  RadiusInterval BoundsAround(const Rect& r, double centre_radius) const;
+
+  // The hashed seed of each noise octave (OctaveSeed(noise_seed, k)), computed once here so that
+  // an evaluation hashes only its lattice corners. Zero for the other kinds.
+  const std::array<uint64_t, kMaxNoiseOctaves>& octave_seeds() const { return octave_seeds_; }
 
   // True when x lies in a masked pixel's half-open square (raster only). O(1).
   bool IsMasked(Vec2 x) const;
@@ -131,6 +144,7 @@ class RadiusField {
   RadiusFieldSpec spec_;
   double slope_ = 0.0;
   uint64_t fingerprint_ = 0;
+  std::array<uint64_t, kMaxNoiseOctaves> octave_seeds_ = {};
   // Raster: radius of each pixel value (v = 0 maps to r_max), and the summed-area table of
   // masked pixels ((width + 1) * (height + 1) counts), null when nothing is masked.
   std::shared_ptr<const std::vector<double>> value_radius_;

@@ -31,46 +31,90 @@ inline double LatticeValue(uint64_t octave_seed, int64_t i, int64_t j) {
 // 6t^5 - 15t^4 + 10t^3: C2 at the lattice lines, derivative at most 15/8 (at t = 1/2).
 inline double QuinticFade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 
-// One octave of value noise at (x, y) in lattice units, in [0, 1). Each partial derivative is at
-// most 15/8 (the fade's slope times a lattice difference below 1), so the gradient's norm is at
-// most 15/8 * sqrt(2).
-inline double ValueNoiseOctave(uint64_t octave_seed, double x, double y) {
+// Where (x, y), in lattice units, falls: its lattice cell (i, j) and the faded offsets inside.
+struct LatticeSpot {
+  int64_t i = 0;
+  int64_t j = 0;
+  double u = 0.0;  // QuinticFade(x - i)
+  double v = 0.0;  // QuinticFade(y - j)
+};
+
+// floor(x) for |x| <= 2^62, without a call into libm (x86-64 has no floor instruction before
+// SSE4.1): the truncation, less one when it rounded up. Exact, as floor is: beyond 2^52 every
+// double is an integer and the conversion returns it unchanged. floor(-0.0) is -0.0 and this
+// +0.0; the lattice index and the offset x - floor(x) (+0.0 either way) do not tell them apart.
+inline double FloorWithin62Bits(double x) {
+  const auto truncated = static_cast<double>(static_cast<int64_t>(x));
+  return truncated > x ? truncated - 1.0 : truncated;
+}
+
+inline LatticeSpot LatticeSpotAt(double x, double y) {
   // Beyond 2^62 lattice units the integer conversion would overflow; the noise is flat there.
   // NaN goes to 0, so no input reaches the conversion out of range.
   x = x > -0x1.0p62 ? std::min(x, 0x1.0p62) : (x < 0.0 ? -0x1.0p62 : 0.0);
   y = y > -0x1.0p62 ? std::min(y, 0x1.0p62) : (y < 0.0 ? -0x1.0p62 : 0.0);
-  const double fx = std::floor(x);
-  const double fy = std::floor(y);
-  const auto i = static_cast<int64_t>(fx);
-  const auto j = static_cast<int64_t>(fy);
-  const double u = QuinticFade(x - fx);
-  const double v = QuinticFade(y - fy);
-  const double a = LatticeValue(octave_seed, i, j);
-  const double b = LatticeValue(octave_seed, i + 1, j);
-  const double c = LatticeValue(octave_seed, i, j + 1);
-  const double d = LatticeValue(octave_seed, i + 1, j + 1);
-  const double bottom = a + (b - a) * u;
-  const double top = c + (d - c) * u;
+  const double fx = FloorWithin62Bits(x);
+  const double fy = FloorWithin62Bits(y);
+  return {static_cast<int64_t>(fx), static_cast<int64_t>(fy), QuinticFade(x - fx),
+          QuinticFade(y - fy)};
+}
+
+// The lattice values at a cell's corners (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1).
+struct LatticeCorners {
+  double a = 0.0;
+  double b = 0.0;
+  double c = 0.0;
+  double d = 0.0;
+};
+
+inline LatticeCorners LatticeCornersOf(uint64_t octave_seed, int64_t i, int64_t j) {
+  return {LatticeValue(octave_seed, i, j), LatticeValue(octave_seed, i + 1, j),
+          LatticeValue(octave_seed, i, j + 1), LatticeValue(octave_seed, i + 1, j + 1)};
+}
+
+// The bilinear blend of the corners at the faded offsets.
+inline double BlendCorners(const LatticeCorners& k, double u, double v) {
+  const double bottom = k.a + (k.b - k.a) * u;
+  const double top = k.c + (k.d - k.c) * u;
   return bottom + (top - bottom) * v;
 }
 
-// Fractal sum over `octaves` octaves, octave k at frequency * 2^k with weight gain^k, divided by
-// the sum of the weights so the result stays in [0, 1]. REQUIRES: octaves in [1, 8], gain > 0.
-// Cost: 4 mixes and ~20 flops per octave.
-inline double FractalValueNoise(uint64_t seed, double frequency, int octaves, double gain, double x,
-                                double y) {
+// One octave of value noise at (x, y) in lattice units, in [0, 1). Each partial derivative is at
+// most 15/8 (the fade's slope times a lattice difference below 1), so the gradient's norm is at
+// most 15/8 * sqrt(2).
+inline double ValueNoiseOctave(uint64_t octave_seed, double x, double y) {
+  const LatticeSpot s = LatticeSpotAt(x, y);
+  return BlendCorners(LatticeCornersOf(octave_seed, s.i, s.j), s.u, s.v);
+}
+
+// The fractal sum of octave(k, x * scale, y * scale) over `octaves` octaves, scale = frequency
+// * 2^k, weight gain^k, divided by the sum of the weights and kept at most 1. This order of
+// operations is part of every noise field's bits; FractalValueNoise and FieldEvaluator share it.
+template <typename Octave>
+inline double FractalSum(double frequency, int octaves, double gain, double x, double y,
+                         Octave octave) {
   double sum = 0.0;
   double weight = 1.0;
   double total = 0.0;
   double scale = frequency;
   for (int k = 0; k < octaves; ++k) {
-    sum += weight * ValueNoiseOctave(OctaveSeed(seed, k), x * scale, y * scale);
+    sum += weight * octave(k, x * scale, y * scale);
     total += weight;
     weight *= gain;
     scale *= 2.0;
   }
   const double n = sum / total;
   return n < 1.0 ? n : 1.0;  // a rounding above 1 would leave [r_min, r_max]
+}
+
+// Fractal sum over `octaves` octaves, octave k at frequency * 2^k with weight gain^k, divided by
+// the sum of the weights so the result stays in [0, 1]. REQUIRES: octaves in [1, 8], gain > 0.
+// Cost: 4 mixes and ~20 flops per octave, plus the octave seeds' hashing.
+inline double FractalValueNoise(uint64_t seed, double frequency, int octaves, double gain, double x,
+                                double y) {
+  return FractalSum(frequency, octaves, gain, x, y, [&](int k, double xs, double ys) {
+    return ValueNoiseOctave(OctaveSeed(seed, k), xs, ys);
+  });
 }
 
 // An upper bound of FractalValueNoise's gradient norm (per unit of x): sum_k gain^k 2^k f

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <optional>
 
+#include "scallop/field/field_evaluator.h"
 #include "scallop/geometry/rect_tiles.h"
 #include "scallop/random/rng.h"
 #include "scallop/sampling/field_point_grid.h"
@@ -25,6 +26,7 @@ class FieldRun {
            FieldSampleStats* stats, const SamplingProblem* problem = nullptr)
       : rect_(domain),
         field_(field),
+        evaluator_(field),
         rng_(rng),
         grid_(problem == nullptr ? rect_ : Grown(rect_, 2.0 * field.r_max()), GridCell(field)),
         tries_(curve_tries),
@@ -109,7 +111,7 @@ class FieldRun {
 
   double Radius(Vec2 x) const {
     if (stats_ != nullptr) ++stats_->evaluations;
-    return field_.Evaluate(x);
+    return evaluator_.Evaluate(x);
   }
 
   // Where a new point may go: the domain, outside masks and the problem's closed rectangles.
@@ -118,12 +120,12 @@ class FieldRun {
            (problem_ == nullptr || !InCoveredRect(*problem_, x));
   }
 
-  bool Admissible(Vec2 x, double rx) const { return Open(x) && !grid_.Conflicts(x, rx, Reach(rx)); }
+  bool Admissible(Vec2 x, double rx) const { return Open(x) && !Conflicts(x, rx); }
 
   bool TryPlace(Vec2 x) {
     if (!Open(x)) return false;
     const double rx = Radius(x);
-    if (grid_.Conflicts(x, rx, Reach(rx))) return false;
+    if (Conflicts(x, rx)) return false;
     Place(x, rx);
     return true;
   }
@@ -157,16 +159,20 @@ class FieldRun {
   }
 
   // Every point that can conflict with a spot of p's curve: spots lie within
-  // s_max = Pad(R(p) / (1 - L)) of p and have R <= s_max, so their conflicts lie within
-  // Reach(s_max) of them. Gathered once per candidate, so that its tries scan one short array
-  // instead of the grid's cells.
+  // s_max = Pad(R(p) / (1 - L)) of p and have R <= s_max. Gathered once per candidate, so that
+  // its tries scan one short array instead of the grid's cells.
   void GatherNear(const FieldPoint& p) {
     spot_limit_ = Pad(p.r * reach_factor_);
-    const double gather = spot_limit_ + Reach(spot_limit_);
-    const double gather2 = gather * gather;
+    const double s = spot_limit_;
     near_.clear();
-    grid_.AnyNear(Grown(Rect{p.p.x, p.p.y, p.p.x, p.p.y}, gather), [&](const FieldPoint& q) {
-      if (SquaredDistance(p.p, q.p) <= gather2) near_.push_back(q);
+    // A spot x of the curve is within s of p and has R(x) <= s, so a point q can conflict with
+    // it only if |x - q| < max(s, R(q)), i.e. |p - q| < s + max(s, R(q)); and q's own disk can
+    // hold a whole bracket only if |p - q| < s + R(q). No such q is farther than s + Reach(s).
+    // (1e-9: the doubles' tests of the spot may pass a point a few ulp farther.)
+    const auto reach = [s](double r) { return (s + std::max(s, r)) * (1.0 + 1e-9); };
+    grid_.AnyNear(Grown(Rect{p.p.x, p.p.y, p.p.x, p.p.y}, s + Reach(s)), [&](const FieldPoint& q) {
+      const double m = reach(q.r);
+      if (SquaredDistance(p.p, q.p) < m * m) near_.push_back(q);
       return false;
     });
   }
@@ -253,9 +259,26 @@ class FieldRun {
       const double m = std::max(q.r, r_low);
       return (dx * dx + dy * dy) * (1.0 + 1e-9) < m * m;
     };
+    if (sweep_hint_ && covers(*sweep_hint_)) return true;
+    const auto remember = [&](const FieldPoint& q) {
+      if (!covers(q)) return false;
+      sweep_hint_ = q;
+      return true;
+    };
     const Rect centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1), 0.5 * (c.x0 + c.x1),
                       0.5 * (c.y0 + c.y1)};
-    return grid_.AnyNear(centre, covers) || grid_.AnyNear(Grown(centre, reach), covers);
+    return grid_.AnyNear(centre, remember) || grid_.AnyNear(Grown(centre, reach), remember);
+  }
+
+  // Whether x (with R(x) = rx) conflicts with some point: the sweep's hint first, then the grid.
+  bool Conflicts(Vec2 x, double rx) const {
+    if (sweep_hint_) {
+      const double dx = x.x - sweep_hint_->p.x;
+      const double dy = x.y - sweep_hint_->p.y;
+      const double m = std::max(rx, sweep_hint_->r);
+      if (dx * dx + dy * dy < m * m) return true;
+    }
+    return grid_.Conflicts(x, rx, Reach(rx));
   }
 
   // The spot nearest to x inside the half-open domain (x itself unless on a top or right edge).
@@ -270,7 +293,7 @@ class FieldRun {
       if (field_.HasMask() && field_.AllMasked(c)) return;
       if (stats_ != nullptr) ++stats_->cells_tested;
       if (stats_ != nullptr) ++stats_->evaluations;
-      const RadiusInterval bounds = field_.Bounds(c);
+      const RadiusInterval bounds = evaluator_.Bounds(c);
       // One point covers the cell only if its farthest corner, at least half a diagonal away,
       // is closer than R(q) <= R(centre) + L |q - centre|, i.e. closer than R_hi / (1 - L).
       // A cell too large for that is split at once: its children test and dart themselves.
@@ -340,6 +363,9 @@ class FieldRun {
 
   Rect rect_;
   const RadiusField& field_;
+  // A cache of lattice cells: evaluating through it gives Evaluate's bits, so the const methods
+  // that evaluate stay pure.
+  mutable FieldEvaluator evaluator_;
   Rng rng_;
   FieldPointGrid grid_;
   int tries_;
@@ -358,6 +384,10 @@ class FieldRun {
   // The current candidate's neighbours (GatherNear) and how far its curve's spots reach.
   std::vector<FieldPoint> near_;
   double spot_limit_ = 0.0;
+  // The point that last covered a sweep cell: the next cell, a neighbour, is often covered by
+  // it, and a spot there in conflict with it. Any point of the run answers either question
+  // truly, so asking it first changes no result.
+  mutable std::optional<FieldPoint> sweep_hint_;
 };
 
 }  // namespace
