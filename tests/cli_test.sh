@@ -297,7 +297,7 @@ for band in doc["bands"] + [doc["all"]]:
         continue
     judged += 1
     low, peak = s["low_frequency_power"], s["peak"]
-    ok = low < 0.4 and peak["power"] > 1.1 and 0.7 < peak["frequency_per_r"] < 1.5
+    ok = -0.15 < low < 0.4 and peak["power"] > 1.5 and 0.8 < peak["frequency_per_r"] < 1.3
     if ok != blue:
         sys.exit(f"band {band['r']}: low {low}, peak {peak}")
 sys.exit(0 if judged >= 2 else "too few bands judged")

@@ -147,7 +147,9 @@ std::vector<double> FieldStatistics::PairRatioPerPoint() const {
 
 BandSpectrum SpectrumOf(const FieldBand& band) {
   BandSpectrum spectrum;
-  for (int k = 1; k <= 150; ++k) spectrum.frequency.push_back(0.02 * k);
+  // From 0.2 cycles per R: below about 1 / kCutoff the pairs' reach cannot resolve the
+  // spectrum, and where the field varies the density estimate's error dominates there.
+  for (int k = 10; k <= 150; ++k) spectrum.frequency.push_back(0.02 * k);
   spectrum.power = PairRadialSpectrum(band.pairs, spectrum.frequency);
   double low_sum = 0;
   int low_count = 0;

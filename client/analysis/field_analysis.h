@@ -60,13 +60,14 @@ inline constexpr double kPairRatioLimit = 3.0;
 void AddFieldStatistics(std::span<const Vec2> points, const RadiusField& field, const Rect& window,
                         int bands, FieldStatistics& total);
 
-// A band's spectrum normalised by local R: the radial power at `frequencies` (cycles per
-// R(p)), its mean below 0.5 cycles per R, and its peak. For a set of one spacing this is the
-// ordinary radial spectrum in cycles per d (docs/quality.md, "Radius fields").
+// A band's spectrum normalised by local R: the radial power from 0.2 to 3 cycles per R(p)
+// (below 0.2 the 6 R reach of the pairs resolves nothing), its mean below 0.5, and its peak. For a
+// set of one spacing this is the ordinary radial spectrum in cycles per d (docs/quality.md, "Radius
+// fields").
 struct BandSpectrum {
   std::vector<double> frequency;
   std::vector<double> power;
-  double low_power = 0;  // mean power at f < 0.5
+  double low_power = 0;  // mean power at 0.2 <= f < 0.5
   double peak_frequency = 0;
   double peak_power = 0;
 };

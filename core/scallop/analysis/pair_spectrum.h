@@ -41,7 +41,9 @@ struct PairDistanceHistogram {
 // (where the pair correlation is 1). The taper (1 up to 4 spacings, a half cosine to 0 at 6)
 // damps the ringing of the cut, at the cost of smoothing the peak over about 1/6 cycle per
 // spacing. For a stationary set, E[P(f)] is the radially averaged periodogram's; independent
-// uniform points give 1 at every f > 0. Empty histogram: every value 1. O(bins * frequencies).
+// uniform points give 1 at every f > 0. Frequencies below about 1 / kCutoff are not resolved:
+// there P(f) is dominated by the density estimate's error (a 1% error moves P(0) by about 1).
+// Empty histogram: every value 1. O(bins * frequencies).
 std::vector<double> PairRadialSpectrum(const PairDistanceHistogram& histogram,
                                        std::span<const double> frequencies);
 
