@@ -110,8 +110,13 @@
     const s = scale();
     return [view.x + (px - width / 2) / s, view.y - (py - height / 2) / s];
   }
+  // A level-0 tile is one region: 16 d, or a radius-field world's 6 r_max.
+  function regionSide() {
+    const world = worlds.get(view.world);
+    return world && world.region_side ? world.region_side : REGION_SIDE_IN_D * minDistance();
+  }
   function level() {
-    const tileSideInPixels = REGION_SIDE_IN_D * view.z;  // a level-0 tile
+    const tileSideInPixels = regionSide() * scale();  // a level-0 tile
     const wanted = Math.ceil(Math.log2(TILE_SCREEN_PIXELS / tileSideInPixels));
     return Math.min(maxLevel, Math.max(0, wanted));
   }
@@ -127,9 +132,11 @@
   // The tiles covering the view grown by `margin` (world units).
   function tilesAround(margin) {
     const L = level();
-    const side = REGION_SIDE_IN_D * minDistance() * 2 ** L;
+    const side = regionSide() * 2 ** L;
     const [x0, y0, x1, y1] = viewRect();
-    const half = 2 ** (28 - L);
+    // Tiles -half .. half - 1 cover the precision range (2^28 regions of 16 d a side).
+    const world = worlds.get(view.world);
+    const half = world && world.precision_limit ? Math.ceil(world.precision_limit / side) : 2 ** (28 - L);
     const index = (v) => Math.min(half - 1, Math.max(-half, Math.floor(v / side)));
     const wanted = [];
     for (let j = index(y0 - margin); j <= index(y1 + margin); ++j) {
@@ -415,8 +422,7 @@
   }
 
   function drawSeams(width, height) {
-    const world = worlds.get(view.world);
-    const side = world && world.region_side ? world.region_side : REGION_SIDE_IN_D * minDistance();
+    const side = regionSide();
     if (side * scale() < 6) return;  // too dense to mean anything
     const [x0, y0, x1, y1] = viewRect();
     context.beginPath();
