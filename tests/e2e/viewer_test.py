@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """The web viewer (issue 21) in headless Chromium against a real scallopd:
 opened from a link, panned by a mouse drag and zoomed by the wheel, it must
-draw exactly the tiles' points in its view (a radius-field world's too) (fetched here as JSON tiles, a
-decoder the page does not share), show a point's id on hover, keep the view
-in the URL so the link reopens it, and leave a screenshot that is not blank.
+draw exactly the tiles' points in its view (fetched here as JSON tiles, a
+decoder the page does not share), a radius-field world's too, show a point's
+id on hover, keep the view in the URL so the link reopens it, and leave a
+screenshot that is not blank.
 
 Usage: viewer_test.py SCALLOPD SCREENSHOT_PATH
 """
