@@ -102,12 +102,16 @@ void AddFieldStatistics(std::span<const Vec2> points, const RadiusField& field, 
     double nearest = std::numeric_limits<double>::infinity();
     index.Around(p, reach, [&](size_t m) {
       if (m == k) return;
-      const double ratio =
-          std::hypot(points[m].x - p.x, points[m].y - p.y) / std::max(radius[k], radius[m]);
+      // The rule's own expression decides a conflict (dx^2 + dy^2 < m^2, as the sampler and
+      // the verifier evaluate it): the ratio below can round to 1 - 2^-53 for a pair at exactly
+      // the spacing, which the rule allows.
+      const double dx = points[m].x - p.x, dy = points[m].y - p.y;
+      const double spacing = std::max(radius[k], radius[m]);
+      const double ratio = std::hypot(dx, dy) / spacing;
       nearest = std::min(nearest, ratio);
       if (m > k) {
         total.smallest_ratio = std::min(total.smallest_ratio, ratio);
-        if (ratio < 1.0) ++total.conflicts;
+        if (dx * dx + dy * dy < spacing * spacing) ++total.conflicts;
       }
       if (inside && ratio < kPairRatioLimit) {
         total.pair_ratio_counts[static_cast<size_t>(ratio / kPairRatioStep)] += 1;
