@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <vector>
 
@@ -18,9 +20,11 @@
 namespace scallop {
 namespace {
 
-// Every pair's distance over `spacing`, for the points at least kCutoff spacings inside.
-PairDistanceHistogram HistogramOf(const std::vector<Vec2>& points, const Rect& window,
-                                  double spacing) {
+// Every pair's distance over `spacing`, for the points at least kCutoff spacings inside: the
+// points sorted by x, each against those within kCutoff spacings of it in x (every pair
+// closer than that is among them).
+PairDistanceHistogram HistogramOf(std::vector<Vec2> points, const Rect& window, double spacing) {
+  std::sort(points.begin(), points.end(), [](Vec2 a, Vec2 b) { return a.x < b.x; });
   PairDistanceHistogram histogram;
   const double margin = PairDistanceHistogram::kCutoff * spacing;
   for (size_t a = 0; a < points.size(); ++a) {
@@ -30,9 +34,12 @@ PairDistanceHistogram HistogramOf(const std::vector<Vec2>& points, const Rect& w
       continue;
     }
     ++histogram.points;
-    for (size_t b = 0; b < points.size(); ++b) {
-      if (b != a)
-        histogram.AddNeighbour(std::hypot(points[b].x - p.x, points[b].y - p.y) / spacing);
+    const auto first = std::lower_bound(points.begin(), points.end(), p.x - margin,
+                                        [](Vec2 q, double x) { return q.x < x; });
+    for (auto q = first; q != points.end() && q->x <= p.x + margin; ++q) {
+      if (q - points.begin() != static_cast<std::ptrdiff_t>(a)) {
+        histogram.AddNeighbour(std::hypot(q->x - p.x, q->y - p.y) / spacing);
+      }
     }
   }
   return histogram;
