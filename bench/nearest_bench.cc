@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "scallop/field/value_noise.h"
 #include "scallop/noise/nearest_lookup.h"
 #include "scallop/noise/noise_grid.h"
 #include "scallop/random/rng.h"
@@ -115,11 +116,11 @@ void BM_JitteredGridBaseline(benchmark::State& state) {
 }
 BENCHMARK(BM_JitteredGridBaseline)->ArgName("image_order")->Arg(0)->Arg(1);
 
-void BM_NearestWarm(benchmark::State& state) {
-  const std::vector<Vec2> positions = state.range(0) ? ImagePositions() : RandomPositions(1);
+// Warm lookups of `positions` in `world`, with the lookup's fallbacks and grid size.
+void TimeWarmLookups(benchmark::State& state, const World& world,
+                     const std::vector<Vec2>& positions) {
   PlaneEngine engine({.threads = 2});
   NearestLookup lookup(engine);
-  const World world = *World::Create({.seed = 7});
   std::vector<NearestPoint> out(positions.size());
   // Warm every region and grid of the area first: the figure is for warm lookups.
   if (!lookup.Nearest(world, positions, out).ok()) state.SkipWithError("lookup failed");
@@ -134,7 +135,28 @@ void BM_NearestWarm(benchmark::State& state) {
   state.counters["grid_bytes_per_region"] =
       static_cast<double>(stats.bytes) / static_cast<double>(stats.grids_cached);
 }
+
+void BM_NearestWarm(benchmark::State& state) {
+  TimeWarmLookups(state, *World::Create({.seed = 7}),
+                  state.range(0) ? ImagePositions() : RandomPositions(1));
+}
 BENCHMARK(BM_NearestWarm)->ArgName("image_order")->Arg(0)->Arg(1);
+
+// Warm lookups on radius-field worlds (noise over [1, ratio], at 90% of the slope bound), the
+// same positions in units of r_min, beside BM_NearestWarm's constant world (d = 1) in the same
+// run: what FieldNearestGrid's ring search costs against the constant grid's quick pass.
+void BM_NearestWarmField(benchmark::State& state) {
+  const double ratio = static_cast<double>(state.range(0));
+  WorldSpec spec{.seed = 7};
+  spec.radius_field = RadiusFieldSpec{
+      .kind = RadiusFieldKind::kNoise,
+      .r_min = 1.0,
+      .r_max = ratio,
+      .noise_seed = 3,
+      .frequency = 0.9 * kMaxFieldSlope / ((ratio - 1) * FractalValueNoiseSlope(1.0, 3, 0.5))};
+  TimeWarmLookups(state, *World::Create(spec), RandomPositions(1));
+}
+BENCHMARK(BM_NearestWarmField)->ArgName("ratio")->Arg(4)->Arg(16);
 
 // The same 256 x 256 image through EvaluateNoiseGrid (what the NoiseGrid RPC
 // and `scallop noise` run): lookups plus building the image of one channel.

@@ -156,6 +156,12 @@ HttpListener::Response HttpApi::AnswerWorldList(const HttpListener::Request& req
                       {"fingerprint", FingerprintHex(world.fingerprint())},
                       {"region_side", layout.side()},
                       {"precision_limit", layout.precision_limit()}});
+    // A radius-field world's spacing range and kind (its tiles carry rs).
+    if (const RadiusField* field = world.radius_field()) {
+      worlds.back()["field_kind"] = std::string(RadiusFieldKindName(field->kind()));
+      worlds.back()["r_min"] = field->r_min();
+      worlds.back()["r_max"] = field->r_max();
+    }
   }
   HttpListener::Response response;
   response.result(http::status::ok);

@@ -45,6 +45,11 @@ Tile CollectTile(const std::vector<RegionHandle>& regions, const Rect& reach, Ti
                 tile.ids.push_back(id);
                 tile.xs.push_back(position.x);
                 tile.ys.push_back(position.y);
+                // R is a pure function of the field: these are the bits the
+                // point was placed with, as GetPoints' radii carry them.
+                if (tile.world.radius_field() != nullptr) {
+                  tile.rs.push_back(tile.world.SpacingAt(position));
+                }
               });
   return tile;
 }
@@ -82,7 +87,8 @@ void HttpApi::AnswerTile(const HttpListener::Request& request, const std::string
             .rect = TileRect(layout, address.key),
             .ids = {},
             .xs = {},
-            .ys = {}};
+            .ys = {},
+            .rs = {}};
   log->set_world(tile.world.Describe());
   log->set_rect(tile.rect);
   if (Status status = CheckQueryRect(

@@ -45,7 +45,7 @@ grpc::ServerUnaryReactor* ScallopService::Nearest(grpc::CallbackServerContext* c
           }
         }
         if (grpc::Status status = shared_.CheckNearestRegions(
-                NearestLookup::CountRegions(world, positions), "positions",
+                world, NearestLookup::CountRegions(world, positions), "positions",
                 "split scattered positions into several calls");
             !status.ok()) {
           return status;

@@ -42,9 +42,9 @@ grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext*
           }
           return ToGrpcStatus(status);
         }
-        if (grpc::Status status =
-                shared_.CheckNearestRegions(NoiseGridRegions(world, spec), "step: the samples",
-                                            "use a smaller step or fewer samples");
+        if (grpc::Status status = shared_.CheckNearestRegions(
+                world, NoiseGridRegions(world, spec), "step: the samples",
+                "use a smaller step or fewer samples");
             !status.ok()) {
           return status;
         }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "scallop/noise/nearest_lookup.h"
 #include "scallop/plane/query_rect.h"
 #include "world_messages.h"
 
@@ -16,6 +17,26 @@ bool ResolveWorld(const WorldRegistry& worlds, const Request& request, World& wo
   if (!worlds.Resolve(request, resolved).ok()) return false;
   world = resolved.world;
   return true;
+}
+
+// Nearest and NoiseGrid on the box of their positions: each position reads its region's
+// search grid (the 3 x 3 regions about it, shared by every position of the region), so the
+// positions' regions bound the cost, as do their number and max_regions (a call in more is
+// refused). On a radius-field world with masks a position near a mask may also need the
+// brute force's square of half side NearestLookup::FallbackReach (32 r_max: about 12 x 12
+// regions of 6 r_max): the regions of the box grown by that, or that square's per position,
+// whichever is fewer.
+int64_t NearestCost(const World& world, const Rect& box, int64_t positions, int64_t max_regions) {
+  const int64_t plain = std::min({RegionsCost(world, box), positions, max_regions});
+  const RadiusField* field = world.radius_field();
+  if (field == nullptr || !field->HasMask()) return plain;
+  const double reach = NearestLookup::FallbackReach(world);
+  const double limit = RegionLayout(world).precision_limit();
+  // Cut to the range, where the world has its points (and RegionsCost counts).
+  const Rect grown{std::max(box.x0 - reach, -limit), std::max(box.y0 - reach, -limit),
+                   std::min(box.x1 + reach, limit), std::min(box.y1 + reach, limit)};
+  const int64_t per_position = RegionsCost(world, {-reach, -reach, reach, reach});
+  return std::min({RegionsCost(world, grown), plain * per_position});
 }
 
 }  // namespace
@@ -49,10 +70,10 @@ int64_t RequestCost(const WorldRegistry& worlds, const v1::NoiseGridRequest& req
   }
   const double x0 = request.origin_x(), y0 = request.origin_y(), step = request.step();
   // Samples sit at origin + k step, k < width: the last one is inside the box.
-  const int64_t box =
-      RegionsCost(world, {x0, y0, std::nextafter(x0 + step * (request.width() - 1), INFINITY),
-                          std::nextafter(y0 + step * (request.height() - 1), INFINITY)});
-  return std::min({box, int64_t{request.width()} * request.height(), max_regions});
+  return NearestCost(world,
+                     {x0, y0, std::nextafter(x0 + step * (request.width() - 1), INFINITY),
+                      std::nextafter(y0 + step * (request.height() - 1), INFINITY)},
+                     int64_t{request.width()} * request.height(), max_regions);
 }
 
 int64_t RequestCost(const WorldRegistry& worlds, const v1::NearestRequest& request,
@@ -63,9 +84,9 @@ int64_t RequestCost(const WorldRegistry& worlds, const v1::NearestRequest& reque
   if (!ResolveWorld(worlds, request, world) || xs.empty() || xs.size() != ys.size()) return 1;
   const auto [x0, x1] = std::minmax_element(xs.begin(), xs.end());
   const auto [y0, y1] = std::minmax_element(ys.begin(), ys.end());
-  const int64_t box =
-      RegionsCost(world, {*x0, *y0, std::nextafter(*x1, INFINITY), std::nextafter(*y1, INFINITY)});
-  return std::min({box, static_cast<int64_t>(xs.size()), max_regions});
+  return NearestCost(world,
+                     {*x0, *y0, std::nextafter(*x1, INFINITY), std::nextafter(*y1, INFINITY)},
+                     static_cast<int64_t>(xs.size()), max_regions);
 }
 
 }  // namespace scallop::server

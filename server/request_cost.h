@@ -20,7 +20,10 @@ int64_t RegionsCost(const World& world, const Rect& rect);
 // GetPoints: its rectangle. Verify: the rectangle and its 2 d halo.
 // NoiseGrid and Nearest: the regions of the box around their samples or
 // positions, or their number, or `max_regions` (max_nearest_regions: a call
-// whose points lie in more regions is refused before any work), the least.
+// whose points lie in more regions is refused before any work), the least;
+// on a radius-field world with masks, where a position near a mask may need
+// the brute force's 32 r_max square, the box grown by that or that square's
+// regions per position (.cc).
 int64_t RequestCost(const WorldRegistry& worlds, const v1::GetPointsRequest& request);
 int64_t RequestCost(const WorldRegistry& worlds, const v1::VerifyRequest& request);
 int64_t RequestCost(const WorldRegistry& worlds, const v1::NoiseGridRequest& request,

@@ -4,6 +4,7 @@
 #include <boost/asio/post.hpp>
 
 #include "scallop/base/number_text.h"
+#include "scallop/plane/query_rect.h"
 #include "server/retry_status.h"
 
 namespace scallop::server {
@@ -27,13 +28,13 @@ grpc::Status ServiceContext::Admit(const std::string& client, AdmissionBudget& b
   return budget.TryAdmit(client, cost);
 }
 
-grpc::Status ServiceContext::CheckNearestRegions(int64_t regions, const char* field,
-                                                 const char* advice) const {
+grpc::Status ServiceContext::CheckNearestRegions(const World& world, int64_t regions,
+                                                 const char* field, const char* advice) const {
   if (regions <= config.max_nearest_regions) return grpc::Status::OK;
   return {grpc::StatusCode::INVALID_ARGUMENT,
-          std::string(field) + ": lie in " + std::to_string(regions) +
-              " distinct regions of 16 min_distance, at most " +
-              std::to_string(config.max_nearest_regions) + " (max_nearest_regions); " + advice};
+          std::string(field) + ": lie in " + std::to_string(regions) + " distinct regions of " +
+              RegionSideText(world) + ", at most " + std::to_string(config.max_nearest_regions) +
+              " (max_nearest_regions); " + advice};
 }
 
 grpc::ServerUnaryReactor* ScallopService::RunUnary(grpc::CallbackServerContext* context,

@@ -107,8 +107,10 @@ class ServiceContext {
 
   // INVALID_ARGUMENT naming `field` when a Nearest or NoiseGrid call's
   // positions lie in more than max_nearest_regions distinct regions (what
-  // their cost grows with); `advice` says how to stay within it.
-  grpc::Status CheckNearestRegions(int64_t regions, const char* field, const char* advice) const;
+  // their cost grows with, regions of `world`'s layout); `advice` says how
+  // to stay within it.
+  grpc::Status CheckNearestRegions(const World& world, int64_t regions, const char* field,
+                                   const char* advice) const;
 
   // Calls admitted and not yet finished (unary and streaming), for the metrics.
   int requests_in_flight() const {

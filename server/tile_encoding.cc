@@ -100,7 +100,10 @@ std::string EncodeTileJson(const Tile& tile) {
     AppendUnsigned(out, tile.ids[k]);
     out += '"';
   }
-  for (const auto& [name, values] : {std::pair{"xs", &tile.xs}, {"ys", &tile.ys}}) {
+  const bool radii = tile.world.radius_field() != nullptr;
+  for (const auto& [name, values] :
+       {std::pair{"xs", &tile.xs}, {"ys", &tile.ys}, {"rs", &tile.rs}}) {
+    if (values == &tile.rs && !radii) break;
     out += "],\"";
     out += name;
     out += "\":[";
@@ -115,10 +118,12 @@ std::string EncodeTileJson(const Tile& tile) {
 
 std::string EncodeTileBinary(const Tile& tile) {
   std::string out;
-  out.reserve(80 + tile.ids.size() * 24);
+  const bool radii = tile.world.radius_field() != nullptr;
+  out.reserve(80 + tile.ids.size() * (radii ? 32 : 24));
   out += "SCTL";
   AppendLittleEndian(out, uint16_t{1});  // binary layout version
-  AppendLittleEndian(out, uint16_t{0});  // flags: no rs, no layers yet
+  // Flags: bit 0, an rs array follows ys (radius-field worlds); no layers yet.
+  AppendLittleEndian(out, static_cast<uint16_t>(radii ? 1 : 0));
   AppendLittleEndian(out, static_cast<uint32_t>(tile.ids.size()));
   AppendLittleEndian(out, static_cast<uint32_t>(tile.key.level));
   AppendLittleEndian(out, static_cast<uint64_t>(tile.key.i));
@@ -133,12 +138,16 @@ std::string EncodeTileBinary(const Tile& tile) {
   for (const uint64_t id : tile.ids) AppendLittleEndian(out, id);
   for (const double x : tile.xs) AppendDouble(out, x);
   for (const double y : tile.ys) AppendDouble(out, y);
+  if (radii) {
+    for (const double r : tile.rs) AppendDouble(out, r);
+  }
   return out;
 }
 
 double TilePngMargin(const Tile& tile) {
   const double pixel = tile.rect.Width() / kTilePngSide;
-  return std::max(0.25 * tile.world.min_distance(), 0.75 * pixel) + pixel;
+  // The largest disk: d/4, or r_max/4 in a radius-field world.
+  return std::max(0.25 * tile.world.max_spacing(), 0.75 * pixel) + pixel;
 }
 
 StatusOr<std::string> RenderTilePng(const Tile& tile) {
@@ -149,10 +158,11 @@ StatusOr<std::string> RenderTilePng(const Tile& tile) {
                .channels = 1,
                .pixels = std::vector<uint8_t>(kTilePngSide * kTilePngSide, kGround)};
   const double pixel = tile.rect.Width() / kTilePngSide;  // tiles are square
-  const double radius = std::max(0.25 * tile.world.min_distance(), 0.75 * pixel);
   // Pixel (column c, row r) has its centre at (x0 + (c + 0.5) pixel,
   // y1 - (r + 0.5) pixel): row 0 is the top.
   for (size_t k = 0; k < tile.xs.size(); ++k) {
+    const double spacing = tile.rs.empty() ? tile.world.min_distance() : tile.rs[k];
+    const double radius = std::max(0.25 * spacing, 0.75 * pixel);
     const double u = (tile.xs[k] - tile.rect.x0) / pixel;  // in pixels from the left
     const double v = (tile.rect.y1 - tile.ys[k]) / pixel;  // in pixels from the top
     const double reach = radius / pixel;

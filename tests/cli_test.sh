@@ -282,6 +282,40 @@ check "analyze field: 3 bands" test "$(grep -oF '"nearest_ratio_mean"' "$work/ou
 check "analyze field: rho near maximal packing" \
   python3 -c "import json,sys; r=json.load(open('$work/out'))['all']['rho']; sys.exit(not 0.75 < r < 0.95)"
 check "analyze field --png: a PNG" test "$(head -c 4 "$work/field.png" | tail -c 3)" = PNG
+# The spectrum normalised by local R, per band: blue noise in every band (little power below
+# 0.5 / R, a peak above 1 near 1 / R), and a plot of it; uniform random points (a planted
+# fault: no spacing at all) are white at low frequencies instead.
+spectrum_is_blue() {
+  python3 - "$work/out" "$1" <<'PYTHON'
+import json, sys
+doc = json.load(open(sys.argv[1]))
+blue = sys.argv[2] == "blue"
+judged = 0
+for band in doc["bands"] + [doc["all"]]:
+    s = band["spectrum"]
+    if s["points"] < 300:
+        continue
+    judged += 1
+    low, peak = s["low_frequency_power"], s["peak"]
+    ok = -0.15 < low < 0.4 and peak["power"] > 1.5 and 0.8 < peak["frequency_per_r"] < 1.3
+    if ok != blue:
+        sys.exit(f"band {band['r']}: low {low}, peak {peak}")
+sys.exit(0 if judged >= 2 else "too few bands judged")
+PYTHON
+}
+expect_exit 0 analyze --radius-noise 1,4,0.02 --domain 0,0,120,120 --sets 2 --bands 3 --json \
+  --plot "$work/field.svg"
+check "analyze field: each band's spectrum is blue noise" spectrum_is_blue blue
+check "analyze field --plot: an SVG with the bands" grep -qF 'R in [' "$work/field.svg"
+awk 'BEGIN { srand(24); print "x,y"; for (k = 0; k < 4000; ++k) print rand() * 120 "," rand() * 120 }' \
+  >"$work/uniform.csv"
+expect_exit 0 analyze --radius-noise 1,4,0.02 --input "$work/uniform.csv" --rect 0,0,120,120 --json
+check "analyze field: uniform points are not blue" spectrum_is_blue white
+# Seed 2 has a pair at exactly the spacing whose |p - q| / max(R) rounds to 1 - 2^-53: the
+# rule's own expression (dx^2 + dy^2 < m^2) allows it, and analyze must count no conflict.
+expect_exit 0 analyze --radius-noise 1,4,0.02 --domain 0,0,200,200 --seed 2 --bands 1 --json
+check "analyze field: a pair at exactly the spacing is no conflict" \
+  python3 -c "import json,sys; d=json.load(open('$work/out')); sys.exit(not (d['conflicts'] == 0 and d['smallest_pair_ratio'] < 1))"
 # A file of x,y,r rows with a conflict planted: two points 0.5 apart where R >= 1.
 printf 'x,y,r\n10,10,1\n10.5,10,1\n30,30,1\n' >"$work/planted.csv"
 expect_exit 0 analyze --radius-noise 1,4,0.02 --input "$work/planted.csv" --rect 0,0,40,40 --json

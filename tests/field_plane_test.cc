@@ -16,7 +16,6 @@
 #include <string>
 #include <vector>
 
-#include "scallop/noise/nearest_lookup.h"
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/point_id.h"
 #include "scallop/plane/region_layout.h"
@@ -38,18 +37,9 @@ using field_test::FieldCase;
 constexpr double kRMin = 1.0;
 constexpr double kRatio = 4.0;
 
-// A field world: noise over the whole plane, or a 20 x 20 raster whose image covers
-// [-10 r_max, 10 r_max)^2 or more (the pixel size grows until the slope bound holds), 8 regions of
-// 6 r_max a side, with masked blobs for the masked case.
+// A field world with r_min = 1 (field_test_fields.h).
 World FieldWorld(FieldCase c, uint64_t seed, double ratio = kRatio) {
-  const double extent = 10.0 * ratio * kRMin;
-  const RadiusField field =
-      c == FieldCase::kNoise ? field_test::NoiseField(seed, kRMin, ratio)
-                             : field_test::RasterField(seed, kRMin, ratio, 20, 20, -extent, -extent,
-                                                       2 * extent, c == FieldCase::kMaskedRaster);
-  WorldSpec spec{.seed = seed, .algorithm = WorldAlgorithm::kA3};
-  spec.radius_field = field.spec();
-  return ValidWorld(spec);
+  return field_test::PlaneWorld(c, seed, kRMin, ratio);
 }
 
 constexpr FieldCase kCases[] = {FieldCase::kNoise, FieldCase::kRaster, FieldCase::kMaskedRaster};
@@ -408,17 +398,6 @@ TEST(FieldPlaneTest, ViewportTrackerSendsEachPointOnce) {
     for (uint64_t id : in_view.ids) EXPECT_TRUE(sent.contains(id));
   }
   EXPECT_GT(largest_index, static_cast<uint32_t>(kMaxPointsPerRegion));
-}
-
-// Nearest's grids are not laid out for fields yet: a field world is refused by name.
-TEST(FieldPlaneTest, NearestRefusesFieldWorlds) {
-  PlaneEngine engine(EngineOptions(1, int64_t{16} << 20));
-  NearestLookup lookup(engine);
-  const Vec2 positions[] = {{0.5, 0.5}};
-  NearestPoint results[1];
-  const Status status = lookup.Nearest(FieldWorld(FieldCase::kNoise, 1), positions, results);
-  EXPECT_EQ(status.code(), StatusCode::kInvalidArgument);
-  EXPECT_TRUE(status.message().starts_with("world.radius_field")) << status.message();
 }
 
 }  // namespace

@@ -12,7 +12,9 @@
 
 #include "scallop/field/radius_field.h"
 #include "scallop/field/value_noise.h"
+#include "scallop/plane/world.h"
 #include "scallop/random/rng.h"
+#include "tests/test_worlds.h"
 
 namespace scallop::field_test {
 
@@ -91,6 +93,20 @@ inline RadiusField MakeField(FieldCase c, uint64_t seed, double r_min, double ra
       return RasterField(seed, r_min, ratio, 12, 9, domain.x0, domain.y0, domain.Width(), true);
   }
   return RadiusField::Constant(r_min);
+}
+
+// A field world on the plane (a3) with r_min `r_min`: noise over the whole plane, or a 20 x 20
+// raster whose image covers [-10 r_max, 10 r_max)^2 or more (the pixel size grows until the
+// slope bound holds), a few regions of 6 r_max a side, with masked blobs for the masked case.
+inline World PlaneWorld(FieldCase c, uint64_t seed, double r_min, double ratio) {
+  const double extent = 10.0 * ratio * r_min;
+  const RadiusField field = c == FieldCase::kNoise
+                                ? NoiseField(seed, r_min, ratio)
+                                : RasterField(seed, r_min, ratio, 20, 20, -extent, -extent,
+                                              2 * extent, c == FieldCase::kMaskedRaster);
+  WorldSpec spec{.seed = seed, .algorithm = WorldAlgorithm::kA3};
+  spec.radius_field = field.spec();
+  return ValidWorld(spec);
 }
 
 // Pairs with |p - q|^2 < max(R(p), R(q))^2, by looking at every pair.

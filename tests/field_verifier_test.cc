@@ -161,5 +161,43 @@ TEST(FieldVerifierTest, EmptySetIsNotMaximalAndBadInputIsRejected) {
   EXPECT_FALSE(VerifyFieldDomain(none, {0, 0, 10, 10}, field, options).ok());
 }
 
+// options.stop (a Verify whose client has gone stops, as the Delaunay verifier does): a stop
+// that never fires is polled once per 16,384 steps and changes nothing; one that fires at the
+// k-th poll ends the run there with CANCELLED, in the pair scan and in the gap search.
+TEST(FieldVerifierTest, StopIsPolledAndEndsTheRunWithCancelled) {
+  const Rect domain{-150.0, -150.0, 150.0, 150.0};
+  const RadiusField field = field_test::NoiseField(24, 1.0, 4.0);
+  FieldSamplerOptions sampling;
+  sampling.domain = domain;
+  sampling.seed = 24;
+  const std::vector<Vec2> points = *SampleField(sampling, field);
+  const FieldVerifyReport plain = *VerifyFieldDomain(points, domain, field);
+  ASSERT_TRUE(plain.passed());
+  int polls = 0;
+  FieldVerifyOptions never;
+  never.stop = [&] { return ++polls < 0; };
+  const FieldVerifyReport polled = *VerifyFieldDomain(points, domain, field, never);
+  EXPECT_EQ(polled.gap_bound, plain.gap_bound);
+  EXPECT_EQ(polled.pairs_checked, plain.pairs_checked);
+  // The pair scan takes one step a point; the gap search one a cell judged, at least the
+  // 150 x 150 tiles of r_max / 2.
+  const auto steps_at_least = static_cast<int>(points.size()) + 150 * 150;
+  EXPECT_GE(polls, steps_at_least / 16384) << points.size() << " points";
+  ASSERT_GE(polls, 2);
+  for (const int stop_at : {1, polls}) {
+    int calls = 0;
+    FieldVerifyOptions stopping;
+    stopping.stop = [&] { return ++calls >= stop_at; };
+    const StatusOr<FieldVerifyReport> stopped = VerifyFieldDomain(points, domain, field, stopping);
+    ASSERT_FALSE(stopped.ok()) << stop_at;
+    EXPECT_EQ(stopped.status().code(), StatusCode::kCancelled);
+    EXPECT_EQ(calls, stop_at);
+    // The window entry point (what Verify on a field world runs) polls the same way.
+    calls = 0;
+    EXPECT_EQ(VerifyFieldWindow(points, domain, field, stopping).status().code(),
+              StatusCode::kCancelled);
+  }
+}
+
 }  // namespace
 }  // namespace scallop

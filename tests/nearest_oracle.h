@@ -18,6 +18,21 @@
 
 namespace scallop::testing {
 
+// Every point of `points` as (dx*dx + dy*dy, id, point) about p, sorted by (squared, id).
+inline std::vector<std::tuple<double, uint64_t, Vec2>> SortedByKey(Vec2 p,
+                                                                   const PlanePoints& points) {
+  std::vector<std::tuple<double, uint64_t, Vec2>> all;
+  for (size_t k = 0; k < points.positions.size(); ++k) {
+    const Vec2 q = points.positions[k];
+    const double dx = p.x - q.x, dy = p.y - q.y;
+    all.emplace_back(dx * dx + dy * dy, points.ids[k], q);
+  }
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) {
+    return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));
+  });
+  return all;
+}
+
 inline NearestPoint OracleNearest(PlaneEngine& engine, const World& world, Vec2 p) {
   const double d = world.min_distance(), half = 6 * d;
   const double limit = RegionLayout(d).precision_limit();
@@ -25,15 +40,7 @@ inline NearestPoint OracleNearest(PlaneEngine& engine, const World& world, Vec2 
                     std::min(p.x + half, limit), std::min(p.y + half, limit)};
   StatusOr<PlanePoints> points = engine.Points(world, square);
   EXPECT_TRUE(points.ok()) << points.status().message();
-  std::vector<std::tuple<double, uint64_t, Vec2>> all;
-  for (size_t k = 0; k < points->positions.size(); ++k) {
-    const Vec2 q = points->positions[k];
-    const double dx = p.x - q.x, dy = p.y - q.y;
-    all.emplace_back(dx * dx + dy * dy, points->ids[k], q);
-  }
-  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) {
-    return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));
-  });
+  const std::vector<std::tuple<double, uint64_t, Vec2>> all = SortedByKey(p, *points);
   EXPECT_GE(all.size(), 2u) << "at (" << p.x << ", " << p.y << ")";
   if (all.size() < 2) return {};
   // The answer must be certain: the second nearest well inside the square.

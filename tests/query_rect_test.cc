@@ -138,5 +138,23 @@ TEST(QueryRectTest, MessagesNameTheFieldAndTheLimit) {
   EXPECT_TRUE(CheckQueryRect(world, {0, 0, 50, 50}, limit).ok());
 }
 
+// A radius-field world's regions are 6 r_max, not 16 min_distance (d is r_min there), and
+// the message counts and names those.
+TEST(QueryRectTest, FieldWorldMessagesNameItsRegions) {
+  WorldSpec spec{.seed = 1, .algorithm = WorldAlgorithm::kA3};
+  spec.radius_field = RadiusFieldSpec{
+      .kind = RadiusFieldKind::kNoise, .r_min = 0.5, .r_max = 2.0, .frequency = 0.01};
+  const World world = ValidWorld(spec);
+  EXPECT_EQ(RegionSideText(world), "6 r_max (r_max = 2)");
+  EXPECT_EQ(RegionSideText(ValidWorld({.seed = 1, .min_distance = 0.5})), "16 min_distance");
+  // 1e4 r_min^2 allows 172.25 regions; a sliver 12,001 long crosses 1,001 regions of 12.
+  const Status status =
+      CheckQueryRect(world, {0, 0, 12001, 1e-6}, {.max_area = 1e4, .name = "max_test_area"});
+  EXPECT_EQ(status.code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(status.message().find("crosses 1001 regions of 6 r_max (r_max = 2), at most 172.25"),
+            std::string::npos)
+      << status.message();
+}
+
 }  // namespace
 }  // namespace scallop

@@ -58,11 +58,14 @@ void AddFieldStatistics(std::span<const Vec2> points, const RadiusField& field, 
                         int bands, FieldStatistics& total) {
   if (total.bands.empty()) {
     const double ratio = field.r_max() / field.r_min();
+    // Assigned, not designated: GCC asks a designated initializer for every member.
+    total.bands.resize(bands);
     for (int b = 0; b < bands; ++b) {
-      total.bands.push_back({.r_lo = field.r_min() * std::pow(ratio, double(b) / bands),
-                             .r_hi = field.r_min() * std::pow(ratio, double(b + 1) / bands)});
+      total.bands[b].r_lo = field.r_min() * std::pow(ratio, double(b) / bands);
+      total.bands[b].r_hi = field.r_min() * std::pow(ratio, double(b + 1) / bands);
     }
-    total.all = {.r_lo = field.r_min(), .r_hi = field.r_max()};
+    total.all.r_lo = field.r_min();
+    total.all.r_hi = field.r_max();
     total.smallest_ratio = std::numeric_limits<double>::infinity();
     total.pair_ratio_counts.assign(static_cast<size_t>(kPairRatioLimit / kPairRatioStep), 0.0);
   }
@@ -80,6 +83,10 @@ void AddFieldStatistics(std::span<const Vec2> points, const RadiusField& field, 
   for (size_t k = 0; k < points.size(); ++k) radius[k] = field.Evaluate(points[k]);
   const double r_max = field.r_max();
   const CellIndex index(points, r_max);
+  // The spectrum's neighbours reach kCutoff R(p): cells between r_min and r_max keep both the
+  // cells a small R scans and the points a large R's cells hold moderate.
+  const double spectrum_cell = std::sqrt(field.r_min() * r_max);
+  const CellIndex spectrum_index(points, spectrum_cell);
   // Pair ratios below kPairRatioLimit need neighbours within kPairRatioLimit r_max.
   const int reach = static_cast<int>(std::ceil(kPairRatioLimit));
   const double margin = kPairRatioLimit * r_max;
@@ -95,18 +102,35 @@ void AddFieldStatistics(std::span<const Vec2> points, const RadiusField& field, 
     double nearest = std::numeric_limits<double>::infinity();
     index.Around(p, reach, [&](size_t m) {
       if (m == k) return;
-      const double ratio =
-          std::hypot(points[m].x - p.x, points[m].y - p.y) / std::max(radius[k], radius[m]);
+      // The rule's own expression decides a conflict (dx^2 + dy^2 < m^2, as the sampler and
+      // the verifier evaluate it): the ratio below can round to 1 - 2^-53 for a pair at exactly
+      // the spacing, which the rule allows.
+      const double dx = points[m].x - p.x, dy = points[m].y - p.y;
+      const double spacing = std::max(radius[k], radius[m]);
+      const double ratio = std::hypot(dx, dy) / spacing;
       nearest = std::min(nearest, ratio);
       if (m > k) {
         total.smallest_ratio = std::min(total.smallest_ratio, ratio);
-        if (ratio < 1.0) ++total.conflicts;
+        if (dx * dx + dy * dy < spacing * spacing) ++total.conflicts;
       }
       if (inside && ratio < kPairRatioLimit) {
         total.pair_ratio_counts[static_cast<size_t>(ratio / kPairRatioStep)] += 1;
       }
     });
     if (inside) ++total.pair_ratio_points;
+    const double reach_spectrum = PairDistanceHistogram::kCutoff * radius[k];
+    if (p.x - window.x0 >= reach_spectrum && window.x1 - p.x >= reach_spectrum &&
+        p.y - window.y0 >= reach_spectrum && window.y1 - p.y >= reach_spectrum) {
+      ++band.pairs.points;
+      ++total.all.pairs.points;
+      spectrum_index.Around(
+          p, static_cast<int>(std::ceil(reach_spectrum / spectrum_cell)), [&](size_t m) {
+            if (m == k) return;
+            const double s = std::hypot(points[m].x - p.x, points[m].y - p.y) / radius[k];
+            band.pairs.AddNeighbour(s);
+            total.all.pairs.AddNeighbour(s);
+          });
+    }
     if (inside && std::isfinite(nearest)) {
       for (FieldBand* b : {&band, &total.all}) {
         ++b->nn_points;
@@ -123,6 +147,25 @@ std::vector<double> FieldStatistics::PairRatioPerPoint() const {
     per_point[b] = pair_ratio_counts[b] / static_cast<double>(pair_ratio_points);
   }
   return per_point;
+}
+
+BandSpectrum SpectrumOf(const FieldBand& band) {
+  BandSpectrum spectrum;
+  // From 0.2 cycles per R: below about 1 / kCutoff the pairs' reach cannot resolve the
+  // spectrum, and where the field varies the density estimate's error dominates there.
+  for (int k = 10; k <= 150; ++k) spectrum.frequency.push_back(0.02 * k);
+  spectrum.power = PairRadialSpectrum(band.pairs, spectrum.frequency);
+  double low_sum = 0;
+  int low_count = 0;
+  for (size_t k = 0; k < spectrum.frequency.size(); ++k) {
+    if (spectrum.frequency[k] < 0.5) low_sum += spectrum.power[k], ++low_count;
+    if (spectrum.power[k] > spectrum.peak_power) {
+      spectrum.peak_power = spectrum.power[k];
+      spectrum.peak_frequency = spectrum.frequency[k];
+    }
+  }
+  spectrum.low_power = low_count > 0 ? low_sum / low_count : 0;
+  return spectrum;
 }
 
 Image8 RenderPointsOverField(std::span<const Vec2> points, const RadiusField& field,

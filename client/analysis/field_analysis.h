@@ -7,10 +7,11 @@
 #include <span>
 #include <vector>
 
-#include "scallop/image/png_image.h"
+#include "scallop/analysis/pair_spectrum.h"
 #include "scallop/field/radius_field.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
+#include "scallop/image/png_image.h"
 
 namespace scallop::cli {
 
@@ -22,6 +23,9 @@ struct FieldBand {
   double sum_r2 = 0;        // sum of R(p)^2 over them
   int64_t nn_points = 0;    // those far enough inside the window to judge their neighbour
   double nn_ratio_sum = 0;  // sum of |p - q| / max(R(p), R(q)), q nearest by that ratio
+  // Neighbour distances over R(p) from the band's points at least 6 R(p) inside the window:
+  // the spectrum normalised by local R (PairRadialSpectrum, in cycles per R(p)).
+  PairDistanceHistogram pairs;
   // rho normalised by local R: a set of spacing R(x) with normalised radius rho has local
   // density 2 rho^2 / (sqrt 3 R(x)^2), so sum over the band's points of R^2 ~ 2 rho^2 area /
   // sqrt 3 and rho = sqrt(sqrt 3 / 2 * sum_r2 / area). Uniform A3 gives 0.86
@@ -50,10 +54,24 @@ inline constexpr double kPairRatioLimit = 3.0;
 
 // Adds one set's statistics to `total` (sums; bands made on first use). The band areas come
 // from R sampled at the centres of a 256 x 256 grid over `window`, masked spots left out.
-// Points "far inside" are at least 3 r_max from the window's edges. O(points * neighbours +
-// grid), neighbours through a grid of side r_max.
+// Points "far inside" are at least 3 r_max from the window's edges; a point's spectrum pairs
+// are counted when it is at least 6 R(p) inside. O(points * neighbours + grid), neighbours
+// through grids of side r_max and sqrt(r_min r_max).
 void AddFieldStatistics(std::span<const Vec2> points, const RadiusField& field, const Rect& window,
                         int bands, FieldStatistics& total);
+
+// A band's spectrum normalised by local R: the radial power from 0.2 to 3 cycles per R(p)
+// (below 0.2 the 6 R reach of the pairs resolves nothing), its mean below 0.5, and its peak. For a
+// set of one spacing this is the ordinary radial spectrum in cycles per d (docs/quality.md, "Radius
+// fields").
+struct BandSpectrum {
+  std::vector<double> frequency;
+  std::vector<double> power;
+  double low_power = 0;  // mean power at 0.2 <= f < 0.5
+  double peak_frequency = 0;
+  double peak_power = 0;
+};
+BandSpectrum SpectrumOf(const FieldBand& band);
 
 // The points over the field: R in grey (light where R is large), masked pixels in dark red, each
 // point a dot inside a ring of radius R/2. `size` pixels along the window's longer side.

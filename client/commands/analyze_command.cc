@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "client/analysis/field_analysis.h"
 #include "client/analysis/periodogram_image.h"
@@ -153,11 +154,44 @@ Status WritePlot(const std::string& path, const std::vector<SeriesResult>& resul
 }
 
 nlohmann::json BandJson(const FieldBand& band) {
-  return {{"r", {band.r_lo, band.r_hi}},
-          {"area", band.area},
-          {"points", band.points},
-          {"rho", band.Rho()},
-          {"nearest_ratio_mean", band.NearestRatio()}};
+  const BandSpectrum spectrum = SpectrumOf(band);
+  return {
+      {"r", {band.r_lo, band.r_hi}},
+      {"area", band.area},
+      {"points", band.points},
+      {"rho", band.Rho()},
+      {"nearest_ratio_mean", band.NearestRatio()},
+      {"spectrum",
+       {{"points", band.pairs.points},
+        {"frequency_per_r", spectrum.frequency},
+        {"power", spectrum.power},
+        {"low_frequency_power", spectrum.low_power},
+        {"peak", {{"frequency_per_r", spectrum.peak_frequency}, {"power", spectrum.peak_power}}}}}};
+}
+
+// --plot with a radius field: the spectrum normalised by local R, one series a band.
+Status WriteFieldPlot(const std::string& path, const FieldStatistics& statistics) {
+  PlotPanel power{.title = "Radial power normalised by local R, by band of R",
+                  .x_label = "frequency (cycles per R(p))",
+                  .y_label = "power",
+                  .series = {},
+                  .references = {{1.0, "white noise"}}};
+  const auto add = [&](const FieldBand& band, const std::string& name) {
+    if (band.pairs.points == 0) return;
+    const BandSpectrum spectrum = SpectrumOf(band);
+    power.series.push_back({name, spectrum.frequency, spectrum.power});
+  };
+  add(statistics.all, "all");
+  for (const FieldBand& band : statistics.bands) {
+    std::ostringstream name;
+    name << std::setprecision(3) << "R in [" << band.r_lo << ", " << band.r_hi << ")";
+    add(band, name.str());
+  }
+  std::ofstream out(path);
+  WriteSvgPanels(out, {power});
+  out.close();
+  if (!out) return InvalidArgument(path + ": cannot write");
+  return Status::Ok();
 }
 
 // A radius field's sets (the field sampler on --domain, a world on --rect, or --input files),
@@ -174,7 +208,6 @@ int RunFieldAnalyze(const AnalyzeArguments& arguments, const RadiusFieldSpec& sp
   if (arguments.sets < 1 || arguments.sets > 1000) {
     return bad(InvalidArgument("--sets: must be in 1..1000 with a radius field"));
   }
-  if (!arguments.plot.empty()) return bad(InvalidArgument("--plot: not with a radius field"));
   if (arguments.torus) return bad(InvalidArgument("--torus: a radius field samples rectangles"));
   if (Status status = CheckFieldAlgorithm(arguments.world.field, arguments.algorithms.size() == 1
                                                                      ? arguments.algorithms[0]
@@ -239,6 +272,12 @@ int RunFieldAnalyze(const AnalyzeArguments& arguments, const RadiusFieldSpec& sp
       return 1;
     }
   }
+  if (!arguments.plot.empty()) {
+    if (Status status = WriteFieldPlot(arguments.plot, statistics); !status.ok()) {
+      std::cerr << "scallop analyze: --plot: " << status.message() << '\n';
+      return 1;
+    }
+  }
   if (arguments.json) {
     nlohmann::json bands = nlohmann::json::array();
     for (const FieldBand& band : statistics.bands) bands.push_back(BandJson(band));
@@ -269,10 +308,19 @@ int RunFieldAnalyze(const AnalyzeArguments& arguments, const RadiusFieldSpec& sp
             << " max(R)\n"
             << "  conflicts " << statistics.conflicts << ", smallest pair "
             << statistics.smallest_ratio << " max(R)\n";
+  const auto print_spectrum = [](const FieldBand& band) {
+    if (band.pairs.points == 0) return;
+    const BandSpectrum spectrum = SpectrumOf(band);
+    std::cout << "    spectrum per local R (" << band.pairs.points << " points): mean power below "
+              << "0.5 / R " << spectrum.low_power << ", peak " << spectrum.peak_power << " at "
+              << spectrum.peak_frequency << " / R\n";
+  };
+  print_spectrum(statistics.all);
   for (const FieldBand& band : statistics.bands) {
     std::cout << "  R in [" << band.r_lo << ", " << band.r_hi << "): " << band.points
               << " points, area " << band.area << ", rho " << band.Rho() << ", nearest "
               << band.NearestRatio() << " max(R)\n";
+    print_spectrum(band);
   }
   return 0;
 }
@@ -280,14 +328,14 @@ int RunFieldAnalyze(const AnalyzeArguments& arguments, const RadiusFieldSpec& sp
 int RunAnalyze(const AnalyzeArguments& arguments) {
   StatusOr<std::optional<RadiusFieldSpec>> field = ParseLocalField(arguments.world.field);
   if (!field.ok()) return ReportBadArguments("analyze", field.status());
-  if (field->has_value()) return RunFieldAnalyze(arguments, **field);
-  StatusOr<std::vector<SeriesPlan>> plans = PlanSeries(arguments);
-  if (!plans.ok()) return ReportBadArguments("analyze", plans.status());
   if (!arguments.plot.empty() &&
       (arguments.plot.size() < 4 || arguments.plot.substr(arguments.plot.size() - 4) != ".svg")) {
     return ReportBadArguments("analyze",
                               InvalidArgument("--plot: writes SVG, give a path ending in .svg"));
   }
+  if (field->has_value()) return RunFieldAnalyze(arguments, **field);
+  StatusOr<std::vector<SeriesPlan>> plans = PlanSeries(arguments);
+  if (!plans.ok()) return ReportBadArguments("analyze", plans.status());
   std::vector<SeriesResult> results;
   for (const SeriesPlan& plan : *plans) {
     StatusOr<SeriesResult> result = Analyse(plan, arguments);

@@ -60,6 +60,7 @@ int RunInfo(const InfoArguments& arguments) {
     const nlohmann::json document{{"serving", serving},
                                   {"generator_version", info.generator_version()},
                                   {"region_side_in_d", info.region_side_in_d()},
+                                  {"field_region_side_in_r_max", info.field_region_side_in_r_max()},
                                   {"precision_range_in_d", info.precision_range_in_d()},
                                   {"limits",
                                    {{"max_page_size", limits.max_page_size()},
@@ -93,7 +94,8 @@ int RunInfo(const InfoArguments& arguments) {
   }
   std::cout << "health              " << (serving ? "SERVING" : "NOT_SERVING") << '\n'
             << "generator version   " << info.generator_version() << '\n'
-            << "region side         " << info.region_side_in_d() << " d\n"
+            << "region side         " << info.region_side_in_d()
+            << " d (radius fields: " << info.field_region_side_in_r_max() << " r_max)\n"
             << "precision range     |x|, |y| <= " << info.precision_range_in_d() << " d\n"
             << "max page size       " << limits.max_page_size() << " points\n"
             << "max query area      " << limits.max_query_area() << " d^2 (GetPoints)\n"

@@ -62,8 +62,17 @@ StatusOr<NoiseGridSpec> ParseSpec(const NoiseArguments& arguments, const Rect& r
                        .channel = *channel};
 }
 
+// The largest spacing of the world an answer names: d, or r_max with a
+// radius field (the distances' scale, docs/noise.md).
+double LargestSpacing(const v1::World& world) {
+  if (world.radius_field().has_noise()) return world.radius_field().noise().r_max();
+  if (world.radius_field().has_raster()) return world.radius_field().raster().r_max();
+  return world.min_distance();
+}
+
 // Grey for the distances and the cell value, a colour per point for ids.
-// Row 0 of the image is the top: the grid's last row.
+// Row 0 of the image is the top: the grid's last row. d is the world's
+// largest spacing (r_max with a field), which bounds F1 and F2 / 2.
 Image8 Render(const NoiseImage& noise, NoiseChannel channel, double d) {
   Image8 image{.width = noise.width,
                .height = noise.height,
@@ -106,6 +115,7 @@ int RunNoise(const NoiseArguments& arguments) {
     StatusOr<NoiseImage> image = EvaluateNoiseGrid(lookup, query->world, *spec, kMaxLocalSamples);
     if (!image.ok()) return ReportBadArguments("noise", image.status());
     noise = std::move(*image);
+    d = query->world.max_spacing();
   } else {
     v1::NoiseGridRequest request;
     if (Status status = SetRequestWorld(arguments.remote, arguments.world, request); !status.ok()) {
@@ -136,7 +146,7 @@ int RunNoise(const NoiseArguments& arguments) {
              .height = spec->height,
              .values = {response.values().begin(), response.values().end()},
              .ids = {response.ids().begin(), response.ids().end()}};
-    d = response.world().min_distance();
+    d = LargestSpacing(response.world());
   }
   if (Status status = WritePng(arguments.png, Render(noise, spec->channel, d)); !status.ok()) {
     return ReportBadArguments("noise", status);

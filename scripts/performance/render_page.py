@@ -210,6 +210,25 @@ def nearest(run):
     return "".join(out)
 
 
+def field_lookups(run):
+    rows = medians(load_json("nearest_bench.json"))
+    base = rows.get("BM_NearestWarm/image_order:0")
+    fields = [(ratio_arg, rows.get(f"BM_NearestWarmField/ratio:{ratio_arg}")) for ratio_arg in (4, 16)]
+    if not base or not all(row for _, row in fields):
+        return MISSING
+    b = base["lookups_per_second"]
+    out = [command_block(run, "nearest_bench"), "\n",
+           "The same 65,536 random positions (in units of r_min) on noise-field worlds over\n"
+           "[1, 4] and [1, 16] at 90% of the slope bound, against the constant world (d = 1)\n"
+           "in the same run (docs/noise.md). No target was set.\n\n",
+           "| world | lookups/s | against the constant world |\n", "|---|---|---|\n",
+           f"| constant, d = 1 (baseline) | {si(b, '/s')} | 1 |\n"]
+    for ratio_arg, row in fields:
+        f = row["lookups_per_second"]
+        out.append(f"| noise, r_max / r_min = {ratio_arg} | {si(f, '/s')} | **{ratio(f, b)}** |\n")
+    return "".join(out)
+
+
 def deterministic_math(run):
     rows = medians(load_json("deterministic_math_bench.json"))
     if not rows:
@@ -330,7 +349,8 @@ def main():
     sections = (("Bounded samplers", bounded_samplers), ("Radius fields, bounded", radius_fields),
                 ("Radius fields on the plane", radius_fields_on_the_plane),
                 ("Infinite plane", infinite_plane), ("Cold tiles", cold_tiles),
-                ("Nearest lookups", nearest), ("Deterministic math", deterministic_math),
+                ("Nearest lookups", nearest),
+                ("Nearest lookups on radius-field worlds", field_lookups), ("Deterministic math", deterministic_math),
                 ("Verifier", verifier), ("Follow: a walking player", follow),
                 ("Service under load", service_load),
                 ("HTTP tiles against GetPoints", http_tiles),

@@ -73,6 +73,12 @@
     const world = worlds.get(view.world);
     return world ? world.min_distance : 1;
   }
+  // The largest spacing: d, or r_max in a radius-field world, which bounds
+  // F1 and F2 / 2 (docs/noise.md).
+  function largestSpacing() {
+    const world = worlds.get(view.world);
+    return world ? world.r_max || world.min_distance : 1;
+  }
   function cssSize() {
     return { width: canvas.clientWidth || window.innerWidth, height: canvas.clientHeight || window.innerHeight };
   }
@@ -104,8 +110,13 @@
     const s = scale();
     return [view.x + (px - width / 2) / s, view.y - (py - height / 2) / s];
   }
+  // A level-0 tile is one region: 16 d, or a radius-field world's 6 r_max.
+  function regionSide() {
+    const world = worlds.get(view.world);
+    return world && world.region_side ? world.region_side : REGION_SIDE_IN_D * minDistance();
+  }
   function level() {
-    const tileSideInPixels = REGION_SIDE_IN_D * view.z;  // a level-0 tile
+    const tileSideInPixels = regionSide() * scale();  // a level-0 tile
     const wanted = Math.ceil(Math.log2(TILE_SCREEN_PIXELS / tileSideInPixels));
     return Math.min(maxLevel, Math.max(0, wanted));
   }
@@ -121,9 +132,11 @@
   // The tiles covering the view grown by `margin` (world units).
   function tilesAround(margin) {
     const L = level();
-    const side = REGION_SIDE_IN_D * minDistance() * 2 ** L;
+    const side = regionSide() * 2 ** L;
     const [x0, y0, x1, y1] = viewRect();
-    const half = 2 ** (28 - L);
+    // Tiles -half .. half - 1 cover the precision range (2^28 regions of 16 d a side).
+    const world = worlds.get(view.world);
+    const half = world && world.precision_limit ? Math.ceil(world.precision_limit / side) : 2 ** (28 - L);
     const index = (v) => Math.min(half - 1, Math.max(-half, Math.floor(v / side)));
     const wanted = [];
     for (let j = index(y0 - margin); j <= index(y1 + margin); ++j) {
@@ -289,7 +302,8 @@
     const fill = cellStart.slice(0, columns * rows);
     const cellPoints = new Int32Array(n);
     for (let m = 0; m < n; ++m) cellPoints[fill[cellOf[m]]++] = m;
-    return { d, n, gx0, gy0, columns, rows, cellStart, cellPoints, xs, ys, owners, tileOf, index };
+    const reach = largestSpacing();
+    return { d, reach, n, gx0, gy0, columns, rows, cellStart, cellPoints, xs, ys, owners, tileOf, index };
   }
 
   // The nearest and second nearest points to (x, y), into these (indices
@@ -297,7 +311,9 @@
   // distances in doubles as the server ranks them (ties aside). The 3 x 3
   // cells around (x, y) first; the ring around them only when the second
   // point found is farther than the nearest edge of those 9 cells (at least
-  // d away). F2 < 2 d, so the 5 x 5 cells always suffice.
+  // d away), then further rings until it is not. F2 < 2 d, so the 5 x 5
+  // cells suffice on a constant world; a radius-field world's grid has cells
+  // of r_min and F2 < 2 r_max, so up to 2 r_max / r_min + 1 rings.
   let nearFirst = -1, nearSecond = -1, nearF1 = Infinity, nearF2 = Infinity;
   let best = Infinity, next = Infinity;
   function scanCell(i, j, x, y) {
@@ -318,10 +334,13 @@
     const cx = Math.floor(fx) - g.gx0, cy = Math.floor(fy) - g.gy0;
     nearFirst = -1; nearSecond = -1; best = Infinity; next = Infinity;
     for (let j = cy - 1; j <= cy + 1; ++j) for (let i = cx - 1; i <= cx + 1; ++i) scanCell(i, j, x, y);
-    const inner = g.d * (1 + Math.min(fx - Math.floor(fx), Math.ceil(fx) - fx, fy - Math.floor(fy), Math.ceil(fy) - fy));
-    if (!(next <= inner * inner)) {
-      for (let i = cx - 2; i <= cx + 2; ++i) { scanCell(i, cy - 2, x, y); scanCell(i, cy + 2, x, y); }
-      for (let j = cy - 1; j <= cy + 1; ++j) { scanCell(cx - 2, j, x, y); scanCell(cx + 2, j, x, y); }
+    const edge = Math.min(fx - Math.floor(fx), Math.ceil(fx) - fx, fy - Math.floor(fy), Math.ceil(fy) - fy);
+    const rings = Math.ceil(2 * g.reach / g.d) + 1;
+    for (let ring = 2; ring <= rings; ++ring) {
+      const inner = g.d * (ring - 1 + edge);
+      if (next <= inner * inner) break;
+      for (let i = cx - ring; i <= cx + ring; ++i) { scanCell(i, cy - ring, x, y); scanCell(i, cy + ring, x, y); }
+      for (let j = cy - ring + 1; j <= cy + ring - 1; ++j) { scanCell(cx - ring, j, x, y); scanCell(cx + ring, j, x, y); }
     }
     nearF1 = Math.sqrt(best); nearF2 = Math.sqrt(next);
   }
@@ -392,7 +411,7 @@
         let colour = 0xffffffff;
         if (nearFirst >= 0) {
           if (view.background === 'cell') colour = cellColour(nearFirst);
-          else colour = grey(view.background === 'f1' ? nearF1 / grid.d : (nearF2 - nearF1) / grid.d);
+          else colour = grey(view.background === 'f1' ? nearF1 / grid.reach : (nearF2 - nearF1) / grid.reach);
         }
         words[r * columns + c] = colour;
       }
@@ -403,7 +422,7 @@
   }
 
   function drawSeams(width, height) {
-    const side = REGION_SIDE_IN_D * minDistance();
+    const side = regionSide();
     if (side * scale() < 6) return;  // too dense to mean anything
     const [x0, y0, x1, y1] = viewRect();
     context.beginPath();
@@ -445,7 +464,7 @@
     clampView();
 
     const d = minDistance();
-    const margin = 2 * d;  // F2 < 2 d: what the background needs around the screen
+    const margin = 2 * largestSpacing();  // F2 < 2 d (2 r_max): what the background needs around the screen
     const wanted = requestTiles(margin);
     const ready = wanted.filter((tile) => tile.entry.status === 'ready');
     const key = view.world + ':' + ready.map((tile) => tile.key).join('|');

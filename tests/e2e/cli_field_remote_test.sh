@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # End-to-end checks of radius-field worlds through the CLI and a real scallopd: a YAML config
 # loads a raster (made here) and names a raster world and a noise world; `scallop points`,
-# `stream`, `follow` and `info` serve them by name with the r column; an inline noise world
+# `stream`, `follow` and `info` serve them by name with the r column; `nearest` and `noise`
+# answer a noise world through the server as locally; an inline noise world
 # equals `scallop plane`'s; bad fields exit 1 (server) or 2 (client) naming the field; configs
 # with a missing, colour or unknown raster, or a bad field, stop scallopd naming the key.
 # Usage: cli_field_remote_test.sh path/to/scallop path/to/scallopd
@@ -56,6 +57,19 @@ printf '%s\n' -20,-16,0,0 -10,-16,10,0 >"$work/path.txt"
 run "$scallop" follow --server "$server" --world dunes --path "$work/path.txt"
 expect_status 0 "follow of a noise world"
 if [ "$(head -n 1 "$work/out")" = "id,x,y,r" ]; then pass; else fail "follow header: $(head -n 1 "$work/out")"; fi
+# scallop nearest and noise on a field world: through the server the same bytes as locally.
+printf '%s\n' x,y 0.5,0.5 -13,2 7.25,-9.5 -15.5,4 >"$work/positions.csv"
+run "$scallop" nearest "${noise[@]}" --input "$work/positions.csv"
+expect_status 0 "nearest on a noise world"
+cp "$work/out" "$work/nearest.csv"
+run "$scallop" nearest --server "$server" "${noise[@]}" --input "$work/positions.csv"
+if [ "$(wc -l <"$work/out")" -eq 5 ] && cmp -s "$work/out" "$work/nearest.csv"; then pass; else
+  fail "served nearest differs from local: $(cat "$work/out")"; fi
+run "$scallop" noise "${noise[@]}" --rect -16,-8,16,8 --size 64x32 --channel f1 --png "$work/local.png"
+expect_status 0 "noise image of a noise world"
+run "$scallop" noise --server "$server" "${noise[@]}" --rect -16,-8,16,8 --size 64x32 --channel f1 \
+  --png "$work/remote.png"
+if cmp -s "$work/local.png" "$work/remote.png"; then pass; else fail "served noise image differs"; fi
 run "$scallop" verify --server "$server" --world valley --rect "$rect"
 expect_status 0 "verify of a raster world by name"
 if grep -qE '^points in masks +0$' "$work/out"; then pass; else fail "verify output: $(cat "$work/out")"; fi

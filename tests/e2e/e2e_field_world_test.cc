@@ -3,9 +3,9 @@
 // world. Checked: ServerInfo and DescribeWorld report the field and the raster; the points of
 // the named raster world are the same on both servers, carry R (the brute force evaluates the
 // field from the same file), keep the max rule pairwise and stay out of the mask; pages, streams
-// and an inline copy of the world give the same points; Nearest is refused cleanly (its search
-// grids do not take R yet; the brute-force comparison waits, disabled, for them); bad fields
-// are INVALID_ARGUMENT naming the message's field.
+// and an inline copy of the world give the same points; Nearest agrees with a brute force over
+// those points and NoiseGrid with Nearest, on both servers; bad fields are INVALID_ARGUMENT
+// naming the message's field.
 #include <gtest/gtest.h>
 #include <png.h>
 
@@ -212,52 +212,74 @@ TEST_F(E2eFieldWorldTest, PagesStreamsAndTheInlineWorldGiveTheSamePoints) {
   ExpectSame(Get(*first_, kRect, 0, nullptr, "dunes"), Get(*second_, kRect, 101, nullptr, "dunes"));
 }
 
-TEST_F(E2eFieldWorldTest, NearestAndNoiseGridRefuseFieldWorldsNamingTheField) {
-  v1::NearestRequest nearest;
-  nearest.set_world_name("valley");
-  nearest.mutable_positions()->add_xs(0.5);
-  nearest.mutable_positions()->add_ys(0.5);
-  v1::NearestResponse answer;
-  const grpc::Status status = first_->Client().Nearest(nearest, answer);
-  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
-  EXPECT_EQ(status.error_message().rfind("world.radius_field", 0), 0u) << status.error_message();
+// A noise image of the noise world is the same on both servers, and each sample equals
+// Nearest at the sample's position (the documented positions, origin + k step).
+TEST_F(E2eFieldWorldTest, NoiseGridAgreesAcrossServersAndWithNearest) {
   v1::NoiseGridRequest grid;
   grid.set_world_name("dunes");
-  grid.set_step(1.0);
-  grid.set_width(4);
-  grid.set_height(4);
-  grid.set_channel(v1::NOISE_CHANNEL_F1);
-  v1::NoiseGridResponse image;
-  EXPECT_EQ(first_->Client().NoiseGrid(grid, image).error_code(),
-            grpc::StatusCode::INVALID_ARGUMENT);
+  grid.set_origin_x(-10.25);
+  grid.set_origin_y(-7.5);
+  grid.set_step(0.5);
+  grid.set_width(40);
+  grid.set_height(30);
+  grid.set_channel(v1::NOISE_CHANNEL_F2);
+  v1::NoiseGridResponse first, second;
+  const grpc::Status status = first_->Client().NoiseGrid(grid, first);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  ASSERT_TRUE(second_->Client().NoiseGrid(grid, second).ok());
+  ASSERT_EQ(first.values_size(), 40 * 30);
+  ASSERT_EQ(second.values_size(), first.values_size());
+  v1::NearestRequest nearest;
+  nearest.set_world_name("dunes");
+  for (int k = 0; k < first.values_size(); ++k) {
+    EXPECT_EQ(first.values(k), second.values(k)) << k;
+    nearest.mutable_positions()->add_xs(-10.25 + static_cast<double>(k % 40) * 0.5);
+    nearest.mutable_positions()->add_ys(-7.5 + static_cast<double>(k / 40) * 0.5);
+  }
+  v1::NearestResponse answer;
+  ASSERT_TRUE(first_->Client().Nearest(nearest, answer).ok());
+  for (int k = 0; k < first.values_size(); ++k) EXPECT_EQ(answer.f2(k), first.values(k)) << k;
 }
 
-// Disabled until NearestLookup takes radius fields (docs/design.md, "What remains").
-TEST_F(E2eFieldWorldTest, DISABLED_NearestAgreesWithBruteForceOverThePoints) {
+// Nearest on the raster world (its masked column included) against a brute force over the
+// points GetPoints serves, on both servers.
+TEST_F(E2eFieldWorldTest, NearestAgreesWithBruteForceOverThePoints) {
   const FieldPoints around = Get(*first_, {-40.0, -36.0, 40.0, 36.0});
   v1::NearestRequest request;
   request.set_world_name("valley");
-  const std::vector<Vec2> probes{{0.5, 0.5}, {-13.0, 2.0}, {7.25, -9.5}, {20.0, 11.0}};
+  // The last two inside the masked column [-16, -12) x [-16, 16).
+  const std::vector<Vec2> probes{{0.5, 0.5},   {-13.0, 2.0},  {7.25, -9.5},
+                                 {20.0, 11.0}, {-14.0, -3.0}, {-15.9, 8.5}};
   for (const Vec2& p : probes) {
     request.mutable_positions()->add_xs(p.x);
     request.mutable_positions()->add_ys(p.y);
   }
-  v1::NearestResponse response;
+  v1::NearestResponse response, again;
   const grpc::Status status = first_->Client().Nearest(request, response);
   ASSERT_TRUE(status.ok()) << status.error_message();
+  ASSERT_TRUE(second_->Client().Nearest(request, again).ok());
   for (size_t k = 0; k < probes.size(); ++k) {
-    double best = INFINITY;
-    uint64_t id = 0;
+    const auto n = static_cast<int>(k);
+    double best = INFINITY, second = INFINITY;
+    uint64_t id = 0, second_id = 0;
     for (size_t m = 0; m < around.points.positions.size(); ++m) {
       const Vec2 q = around.points.positions[m];
       const double d = std::hypot(q.x - probes[k].x, q.y - probes[k].y);
       if (d < best || (d == best && around.points.ids[m] < id)) {
+        second = best;
+        second_id = id;
         best = d;
         id = around.points.ids[m];
+      } else if (d < second || (d == second && around.points.ids[m] < second_id)) {
+        second = d;
+        second_id = around.points.ids[m];
       }
     }
-    EXPECT_EQ(response.ids(static_cast<int>(k)), id) << k;
-    EXPECT_NEAR(response.f1(static_cast<int>(k)), best, 1e-12) << k;
+    EXPECT_EQ(response.ids(n), id) << k;
+    EXPECT_NEAR(response.f1(n), best, 1e-12) << k;
+    EXPECT_NEAR(response.f2(n), second, 1e-12) << k;
+    EXPECT_EQ(again.ids(n), response.ids(n)) << k;
+    EXPECT_EQ(again.f2(n), response.f2(n)) << k;
   }
 }
 

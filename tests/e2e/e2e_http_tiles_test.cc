@@ -4,10 +4,13 @@
 // a decoder written from docs/tiles.md), the PNG decodes and is dark at every
 // point; ETags are stable and If-None-Match gets 304; bad paths, unknown
 // worlds, out-of-range tiles, the area limit, load shedding and tokens get
-// their documented HTTP codes.
+// their documented HTTP codes. A radius-field world's tiles carry each
+// point's R (JSON "rs", binary flag bit 0 and its array), equal to
+// GetPoints' radii, and its PNG draws disks of R/4.
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -420,6 +423,113 @@ TEST(E2eHttpTileLimitsTest, TilesShareThePerClientRateLimit) {
   EXPECT_EQ(refused.status, 429) << refused.body;
   EXPECT_NE(refused.body.find("rate_limit_per_second"), std::string::npos) << refused.body;
   EXPECT_GE(std::stoll(refused.headers.at("retry-after")), 900);
+  std::remove(config.c_str());
+}
+
+// A radius-field world's tiles (issue 24): JSON "rs" and the binary rs array
+// hold GetPoints' radii to the bit (the binary size 80 + 32n, flag bit 0);
+// the PNG draws each point's disk at R/4, so spots well inside a large
+// point's disk are dark and spots beyond every disk white; the world list
+// gives the field's range. Constant worlds' tiles have no rs (the fixture's
+// tests check flag 0 and 80 + 24n).
+TEST(E2eHttpFieldTilesTest, TilesCarryEachPointsRadius) {
+  const std::string config = ::testing::TempDir() + "e2e_http_field_tiles.yaml";
+  std::ofstream(config) << "http_listen: 127.0.0.1:0\nworlds:\n"
+                        << "  dunes: {seed: 4, radius_field: {noise: {r_min: 0.5, r_max: 2, "
+                           "frequency: 0.05, noise_seed: 9}}}\n";
+  auto server = ScallopdProcess::Start({"--config", config});
+  ASSERT_NE(server, nullptr);
+  const std::string address = HttpAddress(*server);
+  const auto get = [&](const std::string& target) {
+    return Fetch(address, http::verb::get, target);
+  };
+  for (const std::string tile_path :
+       {"/v1/worlds/dunes/tiles/0/0", "/v1/worlds/dunes/tiles/-2/1"}) {
+    SCOPED_TRACE(tile_path);
+    const HttpAnswer json_answer = get(tile_path + ".json");
+    ASSERT_EQ(json_answer.status, 200) << json_answer.body;
+    const nlohmann::json json = nlohmann::json::parse(json_answer.body);
+    const TilePointsRead tile = ReadJsonTile(json_answer.body);
+    // A level-0 tile is one region: 6 r_max = 12.
+    EXPECT_EQ(tile.rect[2] - tile.rect[0], 12.0);
+    const std::vector<double> rs = json.at("rs").get<std::vector<double>>();
+    v1::GetPointsRequest request;
+    request.set_world_name("dunes");
+    *request.mutable_rect() =
+        RectToMessage({tile.rect[0], tile.rect[1], tile.rect[2], tile.rect[3]});
+    PlanePoints expected;
+    std::vector<double> radii;
+    ASSERT_TRUE(server->Client().GetAllPoints(request, expected, {}, &radii).ok());
+    ASSERT_GT(expected.ids.size(), 20u);
+    EXPECT_EQ(tile.ids, expected.ids);
+    EXPECT_EQ(rs, radii);  // == on doubles: to the bit
+    EXPECT_GT(*std::max_element(rs.begin(), rs.end()), *std::min_element(rs.begin(), rs.end()));
+
+    const HttpAnswer binary = get(tile_path + ".bin");
+    ASSERT_EQ(binary.status, 200);
+    const size_t n = ReadLittleEndian(binary.body, 8, 4);
+    EXPECT_EQ(ReadLittleEndian(binary.body, 6, 2), 1u);  // flag bit 0: rs follows ys
+    ASSERT_EQ(binary.body.size(), 80 + 32 * n);
+    ASSERT_EQ(n, rs.size());
+    for (size_t k = 0; k < n; ++k) {
+      ASSERT_EQ(ReadLittleEndian(binary.body, 80 + 8 * k, 8), tile.ids[k]) << k;
+      ASSERT_EQ(ReadDouble(binary.body, 80 + 8 * n + 8 * k), tile.xs[k]) << k;
+      ASSERT_EQ(ReadDouble(binary.body, 80 + 24 * n + 8 * k), rs[k]) << k;
+    }
+
+    // The PNG: disks of R/4 (at least 0.75 pixel), neighbours' disks across the edge.
+    const HttpAnswer png = get(tile_path + ".png");
+    ASSERT_EQ(png.status, 200);
+    int width = 0, height = 0;
+    const std::vector<uint8_t> pixels = DecodeGreyPng(png.body, width, height);
+    ASSERT_EQ(width, 256);
+    const double pixel = (tile.rect[2] - tile.rect[0]) / 256;
+    *request.mutable_rect() =
+        RectToMessage({tile.rect[0] - 1, tile.rect[1] - 1, tile.rect[2] + 1, tile.rect[3] + 1});
+    PlanePoints around;
+    std::vector<double> around_radii;
+    ASSERT_TRUE(server->Client().GetAllPoints(request, around, {}, &around_radii).ok());
+    int white = 0, dark_inside_large_disks = 0;
+    for (int row = 0; row < 256; ++row) {
+      for (int column = 0; column < 256; ++column) {
+        const double x = tile.rect[0] + (column + 0.5) * pixel;
+        const double y = tile.rect[3] - (row + 0.5) * pixel;
+        bool beyond_every_disk = true, deep_in_a_large_disk = false;
+        for (size_t k = 0; k < around.positions.size(); ++k) {
+          const double distance = std::hypot(around.positions[k].x - x, around.positions[k].y - y);
+          const double radius = std::max(around_radii[k] / 4, 0.75 * pixel);
+          if (distance <= radius + pixel) beyond_every_disk = false;
+          // Inside this disk by a pixel, and outside the disk r_min / 4 would draw.
+          if (distance < radius - pixel && distance > 0.5 / 4 + pixel) deep_in_a_large_disk = true;
+        }
+        const uint8_t value = pixels[row * 256 + column];
+        if (beyond_every_disk) {
+          ++white;
+          ASSERT_EQ(value, 255) << "row " << row << " column " << column;
+        }
+        if (deep_in_a_large_disk) {
+          ++dark_inside_large_disks;
+          ASSERT_LT(value, 128) << "row " << row << " column " << column;
+        }
+      }
+    }
+    EXPECT_GT(white, 256 * 256 / 4);
+    EXPECT_GT(dark_inside_large_disks, 100);
+  }
+  const nlohmann::json list = nlohmann::json::parse(get("/v1/worlds").body);
+  bool listed = false;
+  for (const auto& world : list.at("worlds")) {
+    if (world.at("name") != "dunes") continue;
+    listed = true;
+    EXPECT_EQ(world.at("field_kind"), "noise");
+    EXPECT_EQ(world.at("r_min").get<double>(), 0.5);
+    EXPECT_EQ(world.at("r_max").get<double>(), 2.0);
+    EXPECT_EQ(world.at("region_side").get<double>(), 12.0);
+  }
+  EXPECT_TRUE(listed);
+  EXPECT_EQ(list.at("tile_format_version"), 3);
+  // A constant world's tile has no rs.
+  EXPECT_FALSE(nlohmann::json::parse(get("/v1/worlds/default/tiles/0/0.json").body).contains("rs"));
   std::remove(config.c_str());
 }
 

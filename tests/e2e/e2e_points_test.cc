@@ -161,6 +161,7 @@ TEST_F(E2ePointsTest, DescribeWorldAndServerInfo) {
   EXPECT_EQ(info.generator_version(), kGeneratorVersion);
   EXPECT_EQ(info.precision_range_in_d(), 0x1.0p32);
   EXPECT_EQ(info.region_side_in_d(), 16.0);
+  EXPECT_EQ(info.field_region_side_in_r_max(), 6.0);
   EXPECT_EQ(info.limits().max_page_size(), 65536);
   EXPECT_EQ(info.default_world(), "default");
   EXPECT_EQ(std::vector<std::string>(info.world_names().begin(), info.world_names().end()),

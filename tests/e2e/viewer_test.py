@@ -2,8 +2,9 @@
 """The web viewer (issue 21) in headless Chromium against a real scallopd:
 opened from a link, panned by a mouse drag and zoomed by the wheel, it must
 draw exactly the tiles' points in its view (fetched here as JSON tiles, a
-decoder the page does not share), show a point's id on hover, keep the view
-in the URL so the link reopens it, and leave a screenshot that is not blank.
+decoder the page does not share), a radius-field world's too, show a point's
+id on hover, keep the view in the URL so the link reopens it, and leave a
+screenshot that is not blank.
 
 Usage: viewer_test.py SCALLOPD SCREENSHOT_PATH
 """
@@ -31,9 +32,17 @@ def fail(message):
     sys.exit(1)
 
 
-def start_scallopd(scallopd, log):
+# A radius-field world (noise, R from 0.25 to 1): its tiles carry each point's R and are
+# 6 r_max = 6 a side at level 0.
+FIELD_CONFIG = """worlds:
+  dunes: {seed: 4, radius_field: {noise: {r_min: 0.25, r_max: 1, frequency: 0.1, noise_seed: 9}}}
+"""
+FIELD_R_MAX = 1.0
+
+
+def start_scallopd(scallopd, log, config):
     server = subprocess.Popen(
-        [scallopd, "--listen", "127.0.0.1:0", "--http-listen", "127.0.0.1:0",
+        [scallopd, "--config", config, "--listen", "127.0.0.1:0", "--http-listen", "127.0.0.1:0",
          "--world", "coast:7:1:a3", "--world", "fine:9:0.25:a1:1.5", "--log-level", "warn"],
         stdout=subprocess.PIPE, stderr=log, text=True)
     for _ in range(4):
@@ -44,9 +53,10 @@ def start_scallopd(scallopd, log):
     fail("scallopd printed no http address")
 
 
-def tile_points(http, world, d, level, rect):
-    """The points of the JSON tiles overlapping rect that lie in it, by id."""
-    side = REGION_SIDE_IN_D * d * 2 ** level
+def tile_points(http, world, d, level, rect, region_side=None):
+    """The points of the JSON tiles overlapping rect that lie in it, by id (tiles of level 0
+    are regions: 16 d, or region_side for a radius-field world)."""
+    side = (region_side or REGION_SIDE_IN_D * d) * 2 ** level
     points = {}
     for j in range(math.floor(rect[1] / side), math.floor(rect[3] / side) + 1):
         for i in range(math.floor(rect[0] / side), math.floor(rect[2] / side) + 1):
@@ -74,12 +84,12 @@ def wait_idle(driver, what, timeout=20):
     fail(f"{what}: the viewer never became idle")
 
 
-def check_drawn(driver, http, d, what):
+def check_drawn(driver, http, d, what, region_side=None):
     """The points drawn in the view equal the tiles' points there, exactly."""
     state = wait_idle(driver, what)
     drawn = {p["id"]: (p["x"], p["y"]) for p in
              driver.execute_script("return window.scallopViewer.drawnPoints()")}
-    expected = tile_points(http, state["world"], d, state["level"], state["rect"])
+    expected = tile_points(http, state["world"], d, state["level"], state["rect"], region_side)
     if len(expected) < 50:
         fail(f"{what}: only {len(expected)} points in view, too few to judge")
     if drawn != expected:
@@ -93,10 +103,14 @@ def check_drawn(driver, http, d, what):
     return state
 
 
-def check_background(driver, http, d, state):
+def check_background(driver, http, d, state, reach=None, region_side=None):
+    """F1, F2 and the id against brute force; the points within 2 d (2 r_max with a radius
+    field, `reach`) of the view hold both nearest points."""
     rect = state["rect"]
+    margin = 2 * (reach or d)
     around = tile_points(http, state["world"], d, state["level"],
-                         [rect[0] - 2 * d, rect[1] - 2 * d, rect[2] + 2 * d, rect[3] + 2 * d])
+                         [rect[0] - margin, rect[1] - margin, rect[2] + margin, rect[3] + margin],
+                         region_side)
     rng = random.Random(21)
     for _ in range(200):
         x = rng.uniform(rect[0], rect[2])
@@ -113,7 +127,10 @@ def check_background(driver, http, d, state):
 def main():
     scallopd, screenshot = sys.argv[1], sys.argv[2]
     log = tempfile.TemporaryFile(mode="w+")
-    server, http = start_scallopd(scallopd, log)
+    config = tempfile.NamedTemporaryFile(mode="w", suffix=".yaml", delete=False)
+    config.write(FIELD_CONFIG)
+    config.close()
+    server, http = start_scallopd(scallopd, log, config.name)
     options = webdriver.ChromeOptions()
     options.binary_location = "/usr/bin/chromium"
     for argument in ["--headless=new", "--no-sandbox", "--disable-gpu",
@@ -197,10 +214,22 @@ def main():
         if errors:
             fail(f"the page logged errors: {errors}")
         print(f"screenshot {screenshot}: {colours} colours sampled")
+
+        # A radius-field world: its tiles' points drawn as disks of their own R, and the
+        # background's nearest points found as far as F2 < 2 r_max reaches.
+        driver.execute_script("window.scallopViewer.setView({world: 'dunes', x: 10.5, y: -4, z: 15,"
+                              " draw: 'disks', background: 'f2-f1'})")
+        dunes = check_drawn(driver, http, 0.25, "radius-field world 'dunes' with disks",
+                            6 * FIELD_R_MAX)
+        check_background(driver, http, 0.25, dunes, FIELD_R_MAX, 6 * FIELD_R_MAX)
+        errors = [entry for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
+        if errors:
+            fail(f"the page logged errors on the field world: {errors}")
     finally:
         driver.quit()
         server.terminate()
         server.wait(timeout=20)
+        os.unlink(config.name)
     print("viewer test: passed")
 
 

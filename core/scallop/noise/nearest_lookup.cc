@@ -10,6 +10,7 @@
 
 #include "scallop/base/number_text.h"
 #include "scallop/noise/cell_value.h"
+#include "scallop/plane/query_rect.h"
 #include "scallop/random/rng.h"
 
 namespace scallop {
@@ -26,14 +27,14 @@ int64_t FloorToInt64(double v) {
 // inside the precision range's regions. Rounding can move a position within
 // 2^-24 S of a seam to the neighbouring region; that is harmless where any
 // grid holding p's 3x3 block will do, since every grid reaches 3 d past its
-// region.
-RegionKey ApproximateRegionOf(Vec2 p, double inverse_side) {
-  return {
-      // A position exactly on the high limit belongs to no region inside the
-      // range (kRegionsPerHalfAxis); its last region's grid reaches 3 d beyond
-      // it, so that grid answers it.
-      std::clamp(FloorToInt64(p.x * inverse_side), -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1),
-      std::clamp(FloorToInt64(p.y * inverse_side), -kRegionsPerHalfAxis, kRegionsPerHalfAxis - 1)};
+// region (a field world's, 2.25 r_max).
+RegionKey ApproximateRegionOf(Vec2 p, double inverse_side, int64_t regions_per_half_axis) {
+  // A position exactly on the high limit belongs to no region inside the
+  // range (regions_per_half_axis); its last region's grid reaches beyond it,
+  // so that grid answers it.
+  const int64_t n = regions_per_half_axis;
+  return {std::clamp(FloorToInt64(p.x * inverse_side), -n, n - 1),
+          std::clamp(FloorToInt64(p.y * inverse_side), -n, n - 1)};
 }
 
 // `rect` cut to the precision range, where the world has its points.
@@ -138,7 +139,7 @@ void NearestLookup::ReturnScratch(std::unique_ptr<Scratch> scratch) {
 }
 
 Status NearestLookup::ValidatePosition(const World& world, Vec2 position, size_t index) {
-  const double limit = RegionLayout(world.min_distance()).precision_limit();
+  const double limit = RegionLayout(world).precision_limit();
   // The message is built only on failure: this runs once per position.
   if (std::abs(position.x) <= limit && std::abs(position.y) <= limit) return Status::Ok();
   const std::pair<char, double> coordinates[] = {{'x', position.x}, {'y', position.y}};
@@ -154,7 +155,7 @@ Status NearestLookup::ValidatePosition(const World& world, Vec2 position, size_t
 }
 
 int64_t NearestLookup::CountRegions(const World& world, std::span<const Vec2> positions) {
-  const RegionLayout layout(world.min_distance());
+  const RegionLayout layout(world);
   std::vector<RegionKey> keys;
   keys.reserve(positions.size());
   for (const Vec2& p : positions) keys.push_back(layout.RegionOf(p.x, p.y));
@@ -167,14 +168,8 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   if (results.size() != positions.size()) {
     return InvalidArgument("results: must have one entry per position");
   }
-  // The search grids are laid out in d-cells and certified by the constant
-  // spacing's maximality (F1 < d); a field world needs both redone with R.
-  if (world.radius_field() != nullptr) {
-    return InvalidArgument(
-        "world.radius_field: Nearest and NoiseGrid do not take radius-field worlds yet");
-  }
   // ValidatePosition's test inline; the call only to name a bad position.
-  const double limit = RegionLayout(world.min_distance()).precision_limit();
+  const double limit = RegionLayout(world).precision_limit();
   for (size_t k = 0; k < positions.size(); ++k) {
     const Vec2 p = positions[k];
     if (!(std::abs(p.x) <= limit && std::abs(p.y) <= limit)) {
@@ -185,6 +180,9 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   // The exact answer at p from the engine's points, when no grid certifies one.
   auto answer_by_brute_force = [&](size_t k, Vec2 p) -> Status {
     StatusOr<TwoNearest> exact = BruteForce(world, p);
+    if (exact.status().code() == StatusCode::kOutOfRange) {
+      return OutOfRange("positions[" + std::to_string(k) + "]: " + exact.status().message());
+    }
     if (!exact.ok()) return exact.status();
     results[k] = FromTwoNearest(*exact);
     return Status::Ok();
@@ -218,9 +216,8 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
     for (size_t k = 0; k < positions.size(); ++k) {
       sorted[next[grid_of[k]]++] = {positions[k], static_cast<uint32_t>(k)};
     }
-    for (size_t g = 0; g < grids.size(); ++g) {
-      if (StopNow(stop)) return StopStatus();
-      const NearestSearchGrid& grid = *grids[g];
+    // The positions of grid g, by whichever search its world's grids take.
+    auto answer_from = [&](const auto& grid, size_t g) -> Status {
       for (uint32_t j = starts[g]; j < starts[g + 1]; ++j) {
         TwoNearest best;
         if (grid.FindTwoNearest(sorted[j].position, best)) {
@@ -235,6 +232,13 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
           return status;
         }
       }
+      return Status::Ok();
+    };
+    for (size_t g = 0; g < grids.size(); ++g) {
+      if (StopNow(stop)) return StopStatus();
+      const Status status =
+          grids[g].field ? answer_from(*grids[g].field, g) : answer_from(*grids[g].constant, g);
+      if (!status.ok()) return status;
     }
     ReturnScratch(std::move(scratch));
   }
@@ -247,8 +251,9 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
 Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> positions,
                                   std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of,
                                   const StopRequested& stop) {
-  const RegionLayout layout(world.min_distance());
+  const RegionLayout layout(world);
   const double inverse_side = 1.0 / layout.side();
+  const int64_t regions_per_half_axis = layout.regions_per_half_axis();
   struct CallSlot {
     RegionKey key;
     uint32_t grid = 0;
@@ -261,7 +266,7 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
   RegionKey window_low;
   if (positions.size() >= kWindowMinPositions) {
     window.assign(kWindowSide * kWindowSide, kNoGrid);
-    const RegionKey first = ApproximateRegionOf(positions[0], inverse_side);
+    const RegionKey first = ApproximateRegionOf(positions[0], inverse_side, regions_per_half_axis);
     window_low = {first.i - kWindowSide / 2, first.j - kWindowSide / 2};
   }
   // The grid of `key` outside the window, or the first time in it.
@@ -290,7 +295,7 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
   RegionKey current_key;
   uint32_t current = 0;
   for (size_t k = 0; k < positions.size(); ++k) {
-    const RegionKey key = ApproximateRegionOf(positions[k], inverse_side);
+    const RegionKey key = ApproximateRegionOf(positions[k], inverse_side, regions_per_half_axis);
     if (k == 0 || key != current_key) {
       current_key = key;
       const auto wi = static_cast<uint64_t>(key.i - window_low.i);
@@ -319,14 +324,30 @@ StatusOr<NearestLookup::GridHandle> NearestLookup::Grid(const World& world, Regi
       return found->second.grid;
     }
   }
-  // The grid needs every point of its square grown by 1 d (nearest_search_grid.h).
   const double d = world.min_distance();
-  const Rect covered = NearestSearchGrid::CoveredSquare(d, region);
-  const Rect source = ClipToRange({covered.x0 - d, covered.y0 - d, covered.x1 + d, covered.y1 + d},
-                                  RegionLayout(d).precision_limit());
-  StatusOr<PlanePoints> points = engine_.Points(world, source);
-  if (!points.ok()) return points.status();
-  auto grid = std::make_shared<const NearestSearchGrid>(d, region, points->positions, points->ids);
+  const RegionLayout layout(world);
+  GridHandle grid;
+  if (const RadiusField* field = world.radius_field()) {
+    // The grid needs every point of its covered square (field_nearest_grid.h).
+    const Rect covered = FieldNearestGrid::CoveredSquare(layout, region, field->r_max());
+    PlanePoints points;
+    if (Status status =
+            CollectPoints(world, ClipToRange(covered, layout.precision_limit()), points);
+        !status.ok()) {
+      return status;
+    }
+    grid.field = std::make_shared<const FieldNearestGrid>(
+        layout, region, field->r_min(), field->r_max(), points.positions, points.ids);
+  } else {
+    // The grid needs every point of its square grown by 1 d (nearest_search_grid.h).
+    const Rect covered = NearestSearchGrid::CoveredSquare(d, region);
+    const Rect source = ClipToRange(
+        {covered.x0 - d, covered.y0 - d, covered.x1 + d, covered.y1 + d}, layout.precision_limit());
+    StatusOr<PlanePoints> points = engine_.Points(world, source);
+    if (!points.ok()) return points.status();
+    grid.constant =
+        std::make_shared<const NearestSearchGrid>(d, region, points->positions, points->ids);
+  }
 
   std::lock_guard lock(mutex_);
   ++stats_.grids_built;
@@ -334,34 +355,72 @@ StatusOr<NearestLookup::GridHandle> NearestLookup::Grid(const World& world, Regi
   if (!inserted) return entry->second.grid;  // another thread built the same grid meanwhile
   lru_.push_front(key);
   entry->second = {grid, lru_.begin()};
-  stats_.bytes += static_cast<int64_t>(grid->Bytes());
+  stats_.bytes += static_cast<int64_t>(grid.Bytes());
   while (stats_.bytes > options_.cache_bytes && !lru_.empty()) {
     auto victim = grids_.find(lru_.back());
-    stats_.bytes -= static_cast<int64_t>(victim->second.grid->Bytes());
+    stats_.bytes -= static_cast<int64_t>(victim->second.grid.Bytes());
     grids_.erase(victim);
     lru_.pop_back();
   }
-  return GridHandle(grid);
+  return grid;
+}
+
+double NearestLookup::FallbackReach(const World& world) {
+  return 32 * (world.radius_field() != nullptr ? world.max_spacing() : world.min_distance());
+}
+
+Status NearestLookup::CollectPoints(const World& world, const Rect& rect, PlanePoints& points) {
+  if (engine_.ValidateQuery(world, rect).ok()) {
+    StatusOr<PlanePoints> queried = engine_.Points(world, rect);
+    if (!queried.ok()) return queried.status();
+    points = std::move(*queried);
+    return Status::Ok();
+  }
+  // Wider than the engine's area limit (a field world's square at a large r_max / r_min):
+  // the same points, region by region.
+  const RegionLayout layout(world);
+  const RegionRange range = RegionsOverlapping(layout, rect);
+  std::vector<RegionHandle> regions;
+  for (int64_t j = range.low.j; j <= range.high.j; ++j) {
+    for (int64_t i = range.low.i; i <= range.high.i; ++i) {
+      StatusOr<RegionHandle> region = engine_.Region(world, {i, j});
+      if (!region.ok()) return region.status();
+      regions.push_back(std::move(*region));
+    }
+  }
+  points = {};
+  VisitPoints(regions, layout, rect, 0, SIZE_MAX, [&](Vec2 q, uint64_t id) {
+    points.positions.push_back(q);
+    points.ids.push_back(id);
+  });
+  return Status::Ok();
 }
 
 StatusOr<TwoNearest> NearestLookup::BruteForce(const World& world, Vec2 p) {
   const double d = world.min_distance();
-  const double limit = RegionLayout(d).precision_limit();
-  // Squares of side 8 d to 64 d: on a maximal world the first one always
-  // holds the answer (F2 < 2 d); the larger ones only guard against a world
-  // that is not. Every point within (half side - slack) of p is in the
-  // square, despite rounding of its corners (docs/noise.md).
-  for (double half = 4 * d; half <= 32 * d; half *= 2) {
+  const double reach = FallbackReach(world);
+  const double limit = RegionLayout(world).precision_limit();
+  // Squares of half side reach / 8 to reach: on a maximal world the first one
+  // always holds the answer (F2 < 2 d, or 2 r_max away from masks); the larger
+  // ones guard against a world that is not, or a position near a mask. Every
+  // point within (half side - slack) of p is in the square, despite rounding
+  // of its corners (docs/noise.md).
+  for (double half = reach / 8; half <= reach; half *= 2) {
     const Rect square = ClipToRange({p.x - half, p.y - half, p.x + half, p.y + half}, limit);
-    StatusOr<PlanePoints> points = engine_.Points(world, square);
-    if (!points.ok()) return points.status();
+    PlanePoints points;
+    if (Status status = CollectPoints(world, square, points); !status.ok()) return status;
     TwoNearest best;
-    for (size_t k = 0; k < points->positions.size(); ++k) {
-      const Vec2 q = points->positions[k];
-      OfferCandidate(SquaredDistanceFrom(p, q), points->ids[k], q, best);
+    for (size_t k = 0; k < points.positions.size(); ++k) {
+      const Vec2 q = points.positions[k];
+      OfferCandidate(SquaredDistanceFrom(p, q), points.ids[k], q, best);
     }
     const double certified = half - 0x1.0p-12 * d;
     if (best.squared2 <= certified * certified) return best;
+  }
+  if (world.radius_field() != nullptr) {
+    return OutOfRange("fewer than two points within 32 r_max = " + NumberText(reach) +
+                      " of it (a masked area): Nearest answers positions within that of two "
+                      "points");
   }
   return Status(StatusCode::kInternal,
                 "world has fewer than two points within 32 * min_distance of (" +

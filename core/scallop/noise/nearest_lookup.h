@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "scallop/base/status.h"
+#include "scallop/noise/field_nearest_grid.h"
 #include "scallop/noise/nearest_search_grid.h"
 #include "scallop/plane/plane_engine.h"
 
@@ -24,7 +25,10 @@ namespace scallop {
 // so every replica agrees to the bit; f1 and f2 are the square roots of the
 // first two (correctly rounded, hence exact functions of the points). The
 // bounds on f1 and f2 hold at least 2 d inside the precision limit; nearer,
-// f1 < (1 + sqrt 2) d (1 + tolerance) (docs/noise.md, "At the limit").
+// f1 < (1 + sqrt 2) d (1 + tolerance) (docs/noise.md, "At the limit"). On a
+// radius-field world read r_max for d (f1 < r_max, f1 + f2 < 2 r_max), away
+// from masks: near a masked area neither is bounded (docs/noise.md,
+// "Radius-field worlds").
 struct NearestPoint {
   uint64_t id = 0;         // nearest point's id (point_id.h)
   Vec2 position;           // nearest point
@@ -40,7 +44,8 @@ enum class NearestMethod {
 };
 
 struct NearestLookupOptions {
-  // Budget of the search-grid cache (about 12 KB a region: 64 MB holds 5,000).
+  // Budget of the search-grid cache (about 12 KB a region: 64 MB holds 5,000;
+  // a field world's grid holds its region and margin, about 24 bytes a point).
   int64_t cache_bytes = int64_t{64} << 20;
   NearestMethod method = NearestMethod::kGrid;
 };
@@ -81,23 +86,39 @@ class NearestLookup {
   // their number: callers bound those. `stop` is polled before every grid
   // is built or read and before brute-force answers, so an abandoned call
   // ends within one grid's work with kCancelled (results then unspecified).
-  // A radius-field world is refused (INVALID_ARGUMENT naming
-  // world.radius_field): the grids are not laid out for it yet.
+  // A radius-field world is answered the same way, exactly, from grids of
+  // FieldNearestGrid (its regions are 6 r_max; a missing grid costs the
+  // 3 x 3 regions about it). Where a grid cannot certify (only near masks)
+  // the brute force reads squares of half side 4 r_max up to 32 r_max
+  // (FieldFallbackReach); a position with fewer than two points within that
+  // (deep inside a mask) is OUT_OF_RANGE, naming it.
   Status Nearest(const World& world, std::span<const Vec2> positions,
                  std::span<NearestPoint> results, const StopRequested& stop = nullptr);
 
   // The checks Nearest applies to one position; `index` names it in the message.
   static Status ValidatePosition(const World& world, Vec2 position, size_t index);
 
-  // How many distinct regions (region_layout.h) the positions lie in: what
-  // bounds Nearest's cost. O(n log n), about 28 bytes a position.
+  // How many distinct regions (RegionLayout(world)) the positions lie in:
+  // what bounds Nearest's cost. O(n log n), about 28 bytes a position.
   // REQUIRES: every position passes ValidatePosition.
   static int64_t CountRegions(const World& world, std::span<const Vec2> positions);
+
+  // How far the brute force looks about a position, as a half side: 32 d, or
+  // 32 r_max on a radius-field world. Beyond it a position is not answered
+  // (INTERNAL on a constant world, which is maximal; OUT_OF_RANGE on a field
+  // world, where a mask may leave it that far from any point). What a call
+  // may read beyond its positions' regions (server/request_cost.cc).
+  static double FallbackReach(const World& world);
 
   NearestLookupStats Stats() const;
 
  private:
-  using GridHandle = std::shared_ptr<const NearestSearchGrid>;
+  // One region's search grid: a constant world's or a field world's.
+  struct GridHandle {
+    std::shared_ptr<const NearestSearchGrid> constant;
+    std::shared_ptr<const FieldNearestGrid> field;
+    size_t Bytes() const { return field ? field->Bytes() : constant->Bytes(); }
+  };
   struct Key {
     World world;
     RegionKey region;
@@ -125,6 +146,10 @@ class NearestLookup {
   StatusOr<GridHandle> Grid(const World& world, RegionKey region);
   // Exact answer from the engine's points in squares of growing side about p.
   StatusOr<TwoNearest> BruteForce(const World& world, Vec2 p);
+  // Every world point in `rect` (within the precision range), with its id, in
+  // query order: one engine query when the engine's area limit allows, else
+  // region by region, so a field world's wide squares are never refused.
+  Status CollectPoints(const World& world, const Rect& rect, PlanePoints& points);
 
   PlaneEngine& engine_;
   const NearestLookupOptions options_;

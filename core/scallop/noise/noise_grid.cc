@@ -84,7 +84,7 @@ Status ValidateNoiseGrid(const World& world, const NoiseGridSpec& spec, int64_t 
 }
 
 int64_t NoiseGridRegions(const World& world, const NoiseGridSpec& spec) {
-  const RegionLayout layout(world.min_distance());
+  const RegionLayout layout(world);
   return DistinctRegionIndices(layout, spec.origin.x, spec.width, spec.step) *
          DistinctRegionIndices(layout, spec.origin.y, spec.height, spec.step);
 }

@@ -17,6 +17,12 @@ RegionRange RegionsOverlapping(const RegionLayout& layout, const Rect& rect) {
 
 double MaxRegionsCrossed(double max_area) { return max_area / 64 + 16; }
 
+std::string RegionSideText(const World& world) {
+  if (world.radius_field() == nullptr) return NumberText(kRegionSideInD) + " min_distance";
+  return NumberText(kFieldRegionSideInRMax) + " r_max (r_max = " + NumberText(world.max_spacing()) +
+         ")";
+}
+
 Status CheckQueryRect(const World& world, const Rect& rect, const QueryLimit& limit,
                       std::string_view field) {
   if (Status status = CheckRectBounds(world, rect, field); !status.ok()) return status;
@@ -54,9 +60,9 @@ Status CheckQueryCost(const World& world, const Rect& rect, const QueryLimit& li
   const double max_regions = MaxRegionsCrossed(limit.max_area);
   const double regions = RegionsOverlapping(RegionLayout(world), rect).Count();
   if (regions > max_regions) {
-    return InvalidArgument(std::string(what) + ": crosses " + NumberText(regions) +
-                           " regions of 16 min_distance, at most " + NumberText(max_regions) +
-                           " (" + limit_name + " / 64 + 16)");
+    return InvalidArgument(std::string(what) + ": crosses " + NumberText(regions) + " regions of " +
+                           RegionSideText(world) + ", at most " + NumberText(max_regions) + " (" +
+                           limit_name + " / 64 + 16)");
   }
   return Status::Ok();
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "scallop/base/status.h"
@@ -32,6 +33,11 @@ struct RegionRange {
 // REQUIRES: rect finite with x0 < x1 and y0 < y1 (CheckQueryRect ok, or the
 // cost check's rectangle). Exact: ownership agrees with RegionRect to the bit.
 RegionRange RegionsOverlapping(const RegionLayout& layout, const Rect& rect);
+
+// How messages name a world's regions: "16 min_distance" for a constant
+// world, "6 r_max (r_max = 2.5)" for a radius-field world, whose regions
+// scale with r_max (region_layout.h).
+std::string RegionSideText(const World& world);
 
 // The limits one kind of query enforces.
 struct QueryLimit {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "scallop/sampling/spacing.h"
 
@@ -11,8 +12,11 @@ namespace {
 
 // A field world's window, judged by the field verifier and told in VerifyReport's terms.
 StatusOr<VerifyReport> VerifyFieldWorldWindow(const std::vector<Vec2>& points, const Rect& rect,
-                                              const RadiusField& field) {
-  StatusOr<FieldVerifyReport> judged = VerifyFieldWindow(points, rect, field);
+                                              const RadiusField& field,
+                                              std::function<bool()> stop) {
+  FieldVerifyOptions options;
+  options.stop = std::move(stop);
+  StatusOr<FieldVerifyReport> judged = VerifyFieldWindow(points, rect, field, options);
   if (!judged.ok()) return judged.status();
   VerifyReport report;
   report.points_checked = judged->points_checked;
@@ -56,7 +60,7 @@ StatusOr<VerifyReport> VerifyWorldRect(PlaneEngine& engine, const World& world, 
     }
   }
   if (const RadiusField* field = world.radius_field()) {
-    return VerifyFieldWorldWindow(points->positions, rect, *field);
+    return VerifyFieldWorldWindow(points->positions, rect, *field, std::move(stop));
   }
   VerifyOptions options;
   options.seam_spacing = RegionLayout(world).side();

@@ -27,9 +27,9 @@ double MaximalityTolerance(double min_distance, double max_abs);
 // REQUIRES: the engine's max_query_area >= limit.max_area.
 // With `inside`, also the world's points in `rect`, in query order, for
 // callers that go on to measure them (scallop analyze).
-// With `stop`, the Delaunay verifier polls it and returns CANCELLED once it
-// says so (its caller has gone); the query before it is for the caller to
-// stop. The field verifier does not poll it yet.
+// With `stop`, the verifier (Delaunay or field) polls it and returns
+// CANCELLED once it says so (its caller has gone); the query before it is
+// for the caller to stop.
 // Cost: one query of the grown rectangle plus O(N log N) for the verifier.
 StatusOr<VerifyReport> VerifyWorldRect(PlaneEngine& engine, const World& world, const Rect& rect,
                                        const QueryLimit& limit, PlanePoints* inside = nullptr,

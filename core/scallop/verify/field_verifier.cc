@@ -15,13 +15,31 @@
 namespace scallop {
 namespace {
 
+// options.stop, polled every 16,384 steps: a poll may take a lock or read a clock, and a step
+// (one point's pairs, one cell) is microseconds, so a stop is noticed within milliseconds.
+class StopPoll {
+ public:
+  explicit StopPoll(const std::function<bool()>& stop) : stop_(stop) {}
+  // True once stop has said so (and from then on).
+  bool Stopped() {
+    if (!stopped_ && stop_ && (++steps_ & 0x3FFF) == 0) stopped_ = stop_();
+    return stopped_;
+  }
+
+ private:
+  const std::function<bool()>& stop_;
+  uint64_t steps_ = 0;
+  bool stopped_ = false;
+};
+
 class GapSearch {
  public:
   GapSearch(const FieldPointGrid& grid, const RadiusField& field, double tolerance,
-            FieldVerifyReport* report)
+            FieldVerifyReport* report, StopPoll& poll)
       : grid_(grid),
         field_(field),
         report_(report),
+        poll_(poll),
         slope_(1.0 + field.Slope()),
         stop_gap_(0.5 * tolerance * field.r_max()) {}
 
@@ -37,6 +55,7 @@ class GapSearch {
   }
 
   void Judge(const Rect& c, double finest) {
+    if (poll_.Stopped()) return;  // the caller returns CANCELLED, whatever the report says
     if (field_.HasMask() && field_.AllMasked(c)) return;
     const Vec2 centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1)};
     const double half_diagonal = 0.5 * std::hypot(c.Width(), c.Height());
@@ -81,9 +100,12 @@ class GapSearch {
   const FieldPointGrid& grid_;
   const RadiusField& field_;
   FieldVerifyReport* report_;
+  StopPoll& poll_;
   double slope_;
   double stop_gap_;
 };
+
+Status Stopped() { return Cancelled("verify: stopped before the end (its caller has gone)"); }
 
 // VerifyFieldDomain and VerifyFieldWindow: `area` is the domain, or with `window` the window
 // whose pairs and spots are judged while the points outside it are context.
@@ -125,7 +147,9 @@ StatusOr<FieldVerifyReport> Verify(std::span<const Vec2> points, const Rect& are
   }
   // Pairs: the grid files points in insertion order, so a point's index is its position.
   const std::vector<FieldPoint>& filed = grid.points();
+  StopPoll poll(options.stop);
   for (size_t a = 0; a < filed.size(); ++a) {
+    if (poll.Stopped()) return Stopped();
     const Vec2 p = filed[a].p;
     grid.AnyNear(Grown(Rect{p.x, p.y, p.x, p.y}, r_max), [&](const FieldPoint& q) {
       const auto b = static_cast<size_t>(&q - filed.data());
@@ -149,10 +173,11 @@ StatusOr<FieldVerifyReport> Verify(std::span<const Vec2> points, const Rect& are
   if (points.empty()) {
     report.largest_gap = report.gap_bound = std::numeric_limits<double>::infinity();
   } else {
-    GapSearch search(grid, field, options.max_tolerance, &report);
+    GapSearch search(grid, field, options.max_tolerance, &report, poll);
     const double base = 0.5 * r_max;
     const double finest = field.r_min() * 0x1.0p-32;
     ForEachTile(domain, base, [&](const Rect& tile) { search.Judge(tile, finest); });
+    if (poll.Stopped()) return Stopped();
   }
   report.maximal_ok = report.gap_bound < options.max_tolerance * r_max;
   return report;

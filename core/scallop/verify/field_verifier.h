@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <span>
 
@@ -19,6 +20,10 @@ struct FieldVerifyOptions {
   // (1 + L) sqrt(2) 2^-30 r_min (field_sampler.h), and this verifier's own finest cells add
   // (1 + L) 2^-32.5 r_min: together below 3e-9 r_max.
   double max_tolerance = 1e-8;
+  // When set, polled every 16,384 steps (a point's pair scan, a cell judged), as the Delaunay
+  // verifier polls VerifyOptions::stop: once it returns true the verifier stops and returns
+  // CANCELLED (its caller has gone).
+  std::function<bool()> stop;
 };
 
 struct FieldVerifyReport {
@@ -53,7 +58,8 @@ struct FieldVerifyReport {
 // finest cells' bounds enter gap_bound. G(x) is evaluated against the points within 2 r_max
 // (farther ones cannot make it negative), an overestimate that keeps the bound valid.
 // Rejects (INVALID_ARGUMENT): a non-finite or empty domain, non-finite points, a negative or
-// non-finite tolerance, a domain beyond kMaxFieldDomainCells (field_sampler.h).
+// non-finite tolerance, a domain beyond kMaxFieldDomainCells (field_sampler.h). CANCELLED
+// when options.stop asked it to stop.
 // Cost: O(N (r_max / r_min)^2) for the pairs, O(cells) for the gaps, a few per point plus
 // ~30 per near-tangent spot. Not CGAL: the max rule's closest violating pair need not be a
 // Delaunay edge, and G's maxima are not Voronoi vertices.
