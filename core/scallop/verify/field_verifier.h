@@ -11,6 +11,7 @@
 #include "scallop/field/radius_field.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
+#include "scallop/sampling/sampling_problem.h"
 
 namespace scallop {
 
@@ -19,6 +20,12 @@ struct FieldVerifyOptions {
   // (1 + L) sqrt(2) 2^-30 r_min (field_sampler.h), and this verifier's own finest cells add
   // (1 + L) 2^-32.5 r_min: together below 3e-9 r_max.
   double max_tolerance = 1e-8;
+  // Disks whose spots need no cover, as masked pixels need none: for a layer of a layered world,
+  // the other layers' points with the distance D kept from each (docs/design.md, "Layers"). G
+  // becomes min(G, E) with E(x) = min_c |x - c| - D_c, which has slope 1. Disks within 2 r_max
+  // plus the largest D of the domain must be given. The points are not checked against them
+  // (the layered verifier counts cross-layer pairs itself).
+  std::span<const ExclusionDisk> exclusions;
 };
 
 struct FieldVerifyReport {
