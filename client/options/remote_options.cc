@@ -23,6 +23,11 @@ void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server
 }
 
 StatusOr<v1::World> RemoteWorld(const WorldArguments& world) {
+  // The World message has no layers yet (issue 19's API part): refuse rather than send a
+  // world without them.
+  if (HasLayers(world.layers)) {
+    return InvalidArgument("--layer: layered worlds are local only for now (no --server)");
+  }
   if (Status status = CheckFieldAlgorithm(world.field, world.algorithm); !status.ok()) {
     return status;
   }

@@ -22,6 +22,7 @@ void AddWorldOptions(CLI::App& command, WorldArguments& arguments, bool with_rec
   command.add_option("--density", arguments.density, "r'/2r in (1, 2], a1 and a2 only")
       ->capture_default_str();
   AddFieldOptions(command, arguments.field);
+  AddLayerOptions(command, arguments.layers);
   command.add_option("--threads", arguments.threads, "Threads generating regions")
       ->capture_default_str();
   if (with_rect) {
@@ -40,6 +41,9 @@ StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments) {
   StatusOr<PlaneEngineOptions> engine = ParseEngineOptions(arguments);
   if (!engine.ok()) return engine.status();
   query.engine = *engine;
+  StatusOr<LayerMask> layers = ParseLayerFilter(arguments.layers, query.world);
+  if (!layers.ok()) return layers.status();
+  query.layers = *layers;
   return query;
 }
 
@@ -53,11 +57,17 @@ StatusOr<World> ParseWorld(const WorldArguments& arguments) {
   }
   StatusOr<std::optional<RadiusFieldSpec>> field = ParseLocalField(arguments.field);
   if (!field.ok()) return field.status();
+  StatusOr<std::vector<LayerSpec>> layers = ParseLayers(arguments.layers);
+  if (!layers.ok()) return layers.status();
+  StatusOr<std::vector<LayerExclusionSpec>> exclusions = ParseExclusions(arguments.layers);
+  if (!exclusions.ok()) return exclusions.status();
   return World::Create({.seed = *seed,
                         .min_distance = arguments.min_distance,
                         .algorithm = *algorithm,
                         .density = arguments.density,
-                        .radius_field = std::move(*field)});
+                        .radius_field = std::move(*field),
+                        .layers = std::move(*layers),
+                        .exclusions = std::move(*exclusions)});
 }
 
 StatusOr<uint64_t> ParseSeed(const std::string& text) {

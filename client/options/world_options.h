@@ -8,6 +8,7 @@
 #include <string>
 
 #include "client/options/field_options.h"
+#include "client/options/layer_options.h"
 #include "scallop/base/status.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/plane/plane_engine.h"
@@ -23,7 +24,8 @@ struct WorldArguments {
   double density = 2.0;
   int threads = 2;
   std::string rect;
-  FieldArguments field;  // instead of --min-distance
+  FieldArguments field;   // instead of --min-distance
+  LayerArguments layers;  // instead of both: a layered world
 };
 
 // Adds the world options to `command`, storing into `arguments`, which must
@@ -35,6 +37,8 @@ struct WorldQuery {
   World world;
   Rect rect;
   PlaneEngineOptions engine;
+  // The layers --layers asks for (all for a world without layers).
+  LayerMask layers = kAllLayers;
 };
 
 // Parses the world (ParseWorld), --rect and --threads (ParseEngineOptions)
@@ -44,9 +48,8 @@ struct WorldQuery {
 StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments);
 
 // The world alone (--seed, --min-distance, --algorithm, --density, or a radius
-// field, its raster read from its file), checked: the one way the CLI turns
-// typed options into a World. A field's errors name its option
-// (ParseLocalField).
+// field, its raster read from its file, or layers and exclusions), checked: the one way the CLI
+// turns typed options into a World. A field's errors name its option (ParseLocalField).
 StatusOr<World> ParseWorld(const WorldArguments& arguments);
 
 // --seed as typed: all of the text an integer in 0..2^64-1, else an error

@@ -173,6 +173,11 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
     return InvalidArgument(
         "world.radius_field: Nearest and NoiseGrid do not take radius-field worlds yet");
   }
+  // A layered world's answer is per layer, each layer a world of its own (a later layer's is a
+  // field world, above): not done yet.
+  if (world.layers() != nullptr) {
+    return InvalidArgument("world.layers: Nearest and NoiseGrid do not take layered worlds yet");
+  }
   // ValidatePosition's test inline; the call only to name a bad position.
   const double limit = RegionLayout(world.min_distance()).precision_limit();
   for (size_t k = 0; k < positions.size(); ++k) {

@@ -166,14 +166,15 @@ std::string World::Describe() const {
     if (UsesDensity(algorithm())) out << " density=" << NumberText(density());
     out << " version=" << generator_version() << " layers=[";
     for (int k = 0; k < layers_->count(); ++k) {
-      const World& layer = layers_->world(k);
-      out << (k > 0 ? " " : "") << layers_->name(k) << ":";
-      if (layer.radius_field() == nullptr) {
-        out << "d=" << NumberText(layer.min_distance());
+      // The canonical spec's spacing: a later layer's world has a constant field.
+      const LayerSpec& layer = spec_.layers[static_cast<size_t>(k)];
+      out << (k > 0 ? " " : "") << layer.name << ":";
+      if (!layer.radius_field.has_value()) {
+        out << "d=" << NumberText(layer.min_distance);
       } else {
-        out << "field=" << RadiusFieldKindName(layer.radius_field()->kind()) << " r=["
-            << NumberText(layer.radius_field()->r_min()) << ","
-            << NumberText(layer.radius_field()->r_max()) << "]";
+        out << "field=" << RadiusFieldKindName(layer.radius_field->kind) << " r=["
+            << NumberText(layer.radius_field->r_min) << "," << NumberText(layer.radius_field->r_max)
+            << "]";
       }
     }
     out << "] exclusions=[";
