@@ -355,6 +355,15 @@ check "verify layers: pass" grep -qE '^result +pass$' "$work/out"
 check "verify layers: pairs across layers judged" grep -qE '^pairs across layers +[1-9]' "$work/out"
 expect_exit 0 verify "${forest[@]}" --rect -15,-15,15,15 --json
 check "verify layers --json: layered passed" grep -qF '"cross_conflicts":0' "$work/out"
+expect_exit 0 analyze "${forest[@]}" --rect 0,0,60,60 --sets 2 --json --png "$work/layers.png"
+check "analyze layers: each layer and the union" \
+  python3 -c "import json,sys; a=json.load(open('$work/out')); sys.exit([l['name'] for l in a['layers']] != ['trees','bushes','rocks','union'])"
+check "analyze layers: no pair across layers closer than D" \
+  python3 -c "import json,sys; a=json.load(open('$work/out')); sys.exit(any(sum(c['neighbours_per_point'][:20]) for c in a['cross']))"
+check "analyze layers: 6 cross histograms" \
+  python3 -c "import json,sys; a=json.load(open('$work/out')); sys.exit(len(a['cross']) != 6)"
+check "analyze layers --png: a PNG" test "$(head -c 4 "$work/layers.png" | tail -c 3)" = PNG
+expect_bad_argument "--rect: a layered world" analyze "${forest[@]}" --domain 0,0,20,20
 expect_bad_argument "world.layers[1].name: 'trees' is already" plane --layer trees=8 --layer trees=3 --rect 0,0,8,8
 expect_bad_argument "world.exclusions[1]: the matrix is not symmetric" plane "${forest[@]}" \
   --exclusion trees,bushes=2 --exclusion bushes,trees=3 --rect 0,0,8,8
