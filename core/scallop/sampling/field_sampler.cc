@@ -252,7 +252,9 @@ class FieldRun {
     if (largest_exclusion_ == 0.0) return;
     exclusions_.AnyNear(Grown(Rect{p.p.x, p.p.y, p.p.x, p.p.y}, spot_limit_ + largest_exclusion_),
                         [&](const FieldPoint& e) {
-                          const double reach = spot_limit_ + e.r;
+                          // 1e-9 more: a disk that holds a spot within spot_limit_ of p must be
+                          // listed whatever the rounding of these sums.
+                          const double reach = (spot_limit_ + e.r) * (1.0 + 1e-9);
                           if (SquaredDistance(p.p, e.p) < reach * reach)
                             near_exclusions_.push_back(e);
                           return false;
@@ -265,7 +267,17 @@ class FieldRun {
     if (!(rx <= spot_limit_ && SquaredDistance(p.p, x) <= spot_limit_ * spot_limit_)) {
       return Admissible(x, rx);
     }
-    if (!Open(x)) return false;
+    // Open(x), with the exclusion disks from the gathered list: it holds every disk that can
+    // hold a spot within spot_limit_ of p.
+    if (!rect_.Contains(x) || field_.IsMasked(x) ||
+        (problem_ != nullptr && InCoveredRect(*problem_, x))) {
+      return false;
+    }
+    for (const FieldPoint& e : near_exclusions_) {
+      const double dx = x.x - e.p.x;
+      const double dy = x.y - e.p.y;
+      if (dx * dx + dy * dy < e.r * e.r) return false;
+    }
     for (const FieldPoint& q : near_) {
       const double dx = x.x - q.p.x;
       const double dy = x.y - q.p.y;
