@@ -377,5 +377,25 @@ expect_bad_argument "--layer: expected NAME=SPACING" plane --layer trees --rect 
 expect_bad_argument "--layer ferns: field.frequency" plane --layer ferns=noise:1,4,0.5 --rect 0,0,8,8
 expect_bad_argument "--layers: no layer named 'oaks'" plane "${forest[@]}" --layers oaks --rect 0,0,8,8
 expect_exit 2 plane --layer trees=8 --min-distance 2 --rect 0,0,8,8
+# --world-file: the world as YAML, the schema of a named world in scallopd's config.
+cat >"$work/forest.yaml" <<'YAML'
+seed: 7
+layers:
+  - {name: trees, min_distance: 8}
+  - {name: bushes, min_distance: 3}
+  - {name: rocks, min_distance: 1.5}
+exclusions:
+  - {first: rocks, second: trees, distance: 2.5}
+YAML
+rows "$work/from-file" --world-file "$work/forest.yaml" --rect -10,-10,10,10
+rows "$work/from-flags" "${forest[@]}" --exclusion rocks,trees=2.5 --rect -10,-10,10,10
+check "plane --world-file: the same rows as the flags" cmp -s "$work/from-file" "$work/from-flags"
+printf 'seed: 7\nlayers:\n  - {name: a, min_distance: 2}\n  - {name: a, min_distance: 1}\n' \
+  >"$work/repeated.yaml"
+expect_bad_argument "--world-file $work/repeated.yaml: world.layers[1].name" \
+  plane --world-file "$work/repeated.yaml" --rect 0,0,5,5
+printf 'seed: 7\nlayrs: []\n' >"$work/typo.yaml"
+expect_bad_argument "unknown key 'layrs'" plane --world-file "$work/typo.yaml" --rect 0,0,5,5
+expect_exit 2 plane --world-file "$work/forest.yaml" --seed 3 --rect 0,0,5,5
 
 report cli_test

@@ -26,6 +26,9 @@ struct WorldArguments {
   std::string rect;
   FieldArguments field;   // instead of --min-distance
   LayerArguments layers;  // instead of both: a layered world
+  // A YAML file holding the whole world, as a named world of scallopd's config
+  // (proto/conversions/world_yaml.h); instead of all the world options above.
+  std::string world_file;
 };
 
 // Adds the world options to `command`, storing into `arguments`, which must
@@ -48,8 +51,9 @@ struct WorldQuery {
 StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments);
 
 // The world alone (--seed, --min-distance, --algorithm, --density, or a radius
-// field, its raster read from its file, or layers and exclusions), checked: the one way the CLI
-// turns typed options into a World. A field's errors name its option (ParseLocalField).
+// field, its raster read from its file, or layers and exclusions; or --world-file), checked: the
+// one way the CLI turns typed options into a World. A field's errors name its option
+// (ParseLocalField).
 StatusOr<World> ParseWorld(const WorldArguments& arguments);
 
 // --seed as typed: all of the text an integer in 0..2^64-1, else an error
