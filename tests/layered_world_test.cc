@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -99,6 +100,8 @@ Probe BruteForceGap(const PlanePoints& points, const WorldLayers& layers, int k,
     for (double x = window.x0; x <= window.x1; x += step) {
       const Vec2 s{std::min(window.x1, x + rng.Uniform(0, 0.5 * step)),
                    std::min(window.y1, y + rng.Uniform(0, 0.5 * step))};
+      // A masked spot needs no point of the layer.
+      if (own.radius_field() != nullptr && own.radius_field()->IsMasked(s)) continue;
       const double rs = own.SpacingAt(s);
       double slack = INFINITY;
       for (size_t m = 0; m < points.positions.size(); ++m) {
@@ -287,6 +290,61 @@ TEST(LayeredWorldTest, NoConflictAndEachLayerMaximalByBruteForce) {
         EXPECT_GT(report->layered->cross_pairs_checked, 0);
       }
     }
+  }
+}
+
+// A road masked in every layer (a raster of one radius whose road pixels are 0), and sixteen
+// layers: no point on the road, none closer than its rule, each layer maximal given the others
+// off the road; the verifier agrees.
+TEST(LayeredWorldTest, MaskedRoadAndSixteenLayersByBruteForce) {
+  auto road = std::make_shared<RasterImage>();
+  road->width = 40;
+  road->height = 40;
+  for (int j = 0; j < road->height; ++j) {
+    for (int i = 0; i < road->width; ++i) road->pixels.push_back(std::abs(i - j) < 3 ? 0 : 255);
+  }
+  const auto masked = [&](double r) {
+    return RadiusFieldSpec{.kind = RadiusFieldKind::kRaster,
+                           .r_min = r,
+                           .r_max = r,
+                           .raster = road,
+                           .raster_origin = {-20, -20},
+                           .pixel_size = 1};
+  };
+  WorldSpec with_road{.seed = 4};
+  with_road.layers = {{.name = "trees", .radius_field = masked(8)},
+                      {.name = "bushes", .radius_field = masked(3)},
+                      {.name = "rocks", .radius_field = masked(1.5)}};
+  WorldSpec sixteen{.seed = 9};
+  for (int k = 0; k < kMaxLayers; ++k) {
+    std::string name(1, 'l');
+    name.append(std::to_string(k));
+    sixteen.layers.push_back({.name = name, .min_distance = 6.0 * std::pow(0.85, k)});
+  }
+  for (const WorldSpec& spec : {with_road, sixteen}) {
+    const World world = ValidWorld(spec);
+    const WorldLayers& layers = *world.layers();
+    PlaneEngine engine(EngineOptions(2, int64_t{64} << 20));
+    // Sixteen layers cost sixteen probings: a smaller window.
+    const Rect window = layers.count() > 3 ? Rect{-3, -5, 5, 3} : Rect{-9, -7, 7, 9};
+    SCOPED_TRACE(world.Describe());
+    const PlanePoints halo =
+        MustPoints(engine, world, Grown(window, 2 * layers.largest_spacing() + 0.5));
+    EXPECT_EQ(BruteForceConflicts(halo, layers, window), 0);
+    int64_t on_the_road = 0;
+    for (size_t m = 0; m < halo.positions.size(); ++m) {
+      const RadiusField* field = layers.world(halo.layers[m]).radius_field();
+      on_the_road += field != nullptr && field->IsMasked(halo.positions[m]);
+    }
+    EXPECT_EQ(on_the_road, 0);
+    for (int k = 0; k < layers.count(); ++k) {
+      const Probe probe = BruteForceGap(halo, layers, k, window, 0.25, 7);
+      EXPECT_LT(probe.worst, 1e-7) << "layer " << layers.name(k) << " uncovered at ("
+                                   << probe.spot.x << ", " << probe.spot.y << ")";
+    }
+    StatusOr<VerifyReport> report = VerifyWorldRect(engine, world, window, QueryLimit{});
+    ASSERT_TRUE(report.ok()) << report.status().message();
+    EXPECT_TRUE(report->passed());
   }
 }
 
