@@ -31,7 +31,7 @@ fi
 
 targets=(samplers_bench field_bench plane_bench nearest_bench deterministic_math_bench
   follow_bench cold_tile_latency load_generator null_server scallopd delaunay_verifier_test
-  http_tiles_bench)
+  http_tiles_bench nginx_tiles_bench layers_bench)
 if [[ ${SKIP_BUILD:-0} != 1 ]]; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$build" -j2 --target "${targets[@]}"
@@ -55,6 +55,7 @@ bench() {
 if ((quick)); then
   bench samplers_bench --benchmark_filter='/1000/' --benchmark_min_time=0.01
   bench field_bench --benchmark_filter=smoke --benchmark_min_time=0.01
+  bench layers_bench --benchmark_filter=smoke --benchmark_min_time=0.01
   bench plane_bench --benchmark_min_time=0.01
   bench nearest_bench --benchmark_min_time=0.01
   bench deterministic_math_bench --benchmark_filter='Atan2' --benchmark_min_time=0.01
@@ -62,9 +63,11 @@ if ((quick)); then
   tiles=10
   load_env=(DURATION=1 REQUESTS=50 STREAMS=1 REPEATS=1)
   http_tiles_args=(0 2 1 1 1)
+  nginx_tiles_args=(0 2 1 1)
 else
   bench samplers_bench
-  bench field_bench --benchmark_filter=1M
+  bench field_bench --benchmark_filter='1M|250k'
+  bench layers_bench --benchmark_filter=250k
   bench plane_bench
   bench nearest_bench
   bench deterministic_math_bench
@@ -72,6 +75,7 @@ else
   tiles=400
   load_env=(DURATION=10 STREAMS="1 4" REPEATS=3)
   http_tiles_args=(1 16 4 1 9)
+  nginx_tiles_args=(1 16 4 7)
 fi
 
 echo "== cold_tile_latency" >&2
@@ -85,6 +89,10 @@ commands[verifier]="$build/tests/delaunay_verifier_test --gtest_filter=*MillionP
 echo "== http_tiles_bench" >&2
 commands[http_tiles]="$build/bench/http_tiles_bench ${http_tiles_args[*]}"
 "$build/bench/http_tiles_bench" "${http_tiles_args[@]}" 2>/dev/null >"$results/http_tiles.txt"
+
+echo "== nginx_tiles_bench" >&2
+commands[nginx_tiles]="$build/bench/nginx_tiles_bench ${nginx_tiles_args[*]}"
+"$build/bench/nginx_tiles_bench" "${nginx_tiles_args[@]}" 2>/dev/null >"$results/nginx_tiles.txt"
 
 echo "== load" >&2
 commands[load]="${load_env[*]} bench/run-load-benchmark.sh $build"

@@ -95,6 +95,21 @@ TEST(BoundedSamplerGoldenTest, ExhaustiveDartThrowingHasItsPinnedHash) {
   EXPECT_EQ(hash, 0xadbc01d94db31b7dULL) << "got 0x" << std::hex << hash;
 }
 
+// A1 at density 2 is exact dart throwing, by cells with every cell open (on the torus with
+// images across the edges): a path of its own, pinned apart. Until 2026-11-25 it was the paper's
+// A1, restricted to spots within r' (docs/quality.md); world regions still use that one.
+TEST(BoundedSamplerGoldenTest, ExactA1HasItsPinnedHash) {
+  for (const bool torus : {false, true}) {
+    SamplerOptions options = GoldenOptions(Algorithm::kA1, torus, kGoldenSeed);
+    options.density = 2.0;
+    const uint64_t hash = SampleHash(options);
+    std::printf("exact a1: %s 0x%016llxULL\n", torus ? "torus" : "rectangle",
+                static_cast<unsigned long long>(hash));
+    EXPECT_EQ(hash, torus ? 0xef7de23d041a6f97ULL : 0x20b1d66f04e7a74fULL)
+        << "got 0x" << std::hex << hash;
+  }
+}
+
 // The pins can fail: another seed gives another hash for every sampler and
 // domain, so a hash that ignored the points would be caught here.
 TEST(BoundedSamplerGoldenTest, AnotherSeedGivesAnotherHash) {

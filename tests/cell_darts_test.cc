@@ -20,38 +20,59 @@ namespace scallop {
 namespace {
 
 struct CellsRun {
-  Rect domain;
+  Domain domain;
   double spacing = 0.0;
   double outer_radius = 0.0;
+  CellDarts::Reach reach = CellDarts::Reach::kNearPoints;
   std::vector<Vec2> points;
   std::vector<Rect> open;
 };
 
-// A random rectangle of 3 to `longest` d a side, anywhere within 1e4 of the origin, density 2 or
-// 1.3, run until `max_points` points (or to the hand-off).
-CellsRun RunCells(uint64_t seed, size_t max_points, double longest = 16.0) {
+// Squared distance, with wrap-around on a torus (minimum image).
+double RunSquaredDistance(const CellsRun& run, Vec2 p, Vec2 q) {
+  double dx = std::abs(p.x - q.x), dy = std::abs(p.y - q.y);
+  if (run.domain.torus) {
+    dx = std::min(dx, run.domain.rect.Width() - dx);
+    dy = std::min(dy, run.domain.rect.Height() - dy);
+  }
+  return dx * dx + dy * dy;
+}
+
+// A random rectangle of 3 to `longest` d a side (8 on a torus), anywhere within 1e4 of the
+// origin, run until `max_points` points (or to the hand-off). Near points only: density 2 or
+// 1.3, from one uniform seed point. Anywhere (a rectangle or a torus): r' = 2 d, no seed point.
+CellsRun RunCells(uint64_t seed, size_t max_points, double longest = 16.0,
+                  CellDarts::Reach reach = CellDarts::Reach::kNearPoints, bool torus = false) {
   Rng dice(HashWords({seed, 0xCE11}));
   const double d = dice.Uniform(0.5, 2.0);
   const double x0 = dice.Uniform(-1e4, 1e4), y0 = dice.Uniform(-1e4, 1e4);
+  const double shortest = torus ? 8.0 : 3.0;
   CellsRun run;
-  run.domain = {x0, y0, x0 + dice.Uniform(3.0, longest) * d, y0 + dice.Uniform(3.0, longest) * d};
+  run.domain = {
+      {x0, y0, x0 + dice.Uniform(shortest, longest) * d, y0 + dice.Uniform(shortest, longest) * d},
+      torus};
   run.spacing = SpacingFor(d, 2e4);
-  run.outer_radius = (seed % 2 == 0 ? 2.0 : 1.3) * d;
-  CellDarts cells(run.domain, d, run.spacing, run.outer_radius);
-  run.points = {
-      {dice.Uniform(run.domain.x0, run.domain.x1), dice.Uniform(run.domain.y0, run.domain.y1)}};
-  cells.AddPoint(run.points[0]);
+  run.reach = reach;
+  const bool anywhere = reach == CellDarts::Reach::kAnywhere;
+  run.outer_radius = (anywhere || seed % 2 == 0 ? 2.0 : 1.3) * d;
+  CellDarts cells(run.domain, d, run.spacing, run.outer_radius, reach);
+  if (!anywhere) {
+    const Rect& r = run.domain.rect;
+    run.points = {{dice.Uniform(r.x0, r.x1), dice.Uniform(r.y0, r.y1)}};
+    cells.AddPoint(run.points[0]);
+  }
   Rng rng(seed);
   cells.Run(rng, run.points, max_points);
   cells.ForEachOpenCell([&](const Rect& cell) { run.open.push_back(cell); });
   return run;
 }
 
+// In T: in the domain, at least s from every point and (near points only) within r' of one.
 bool InT(const CellsRun& run, Vec2 spot) {
-  if (!run.domain.Contains(spot)) return false;
-  bool reachable = false;
+  if (!run.domain.rect.Contains(spot)) return false;
+  bool reachable = run.reach == CellDarts::Reach::kAnywhere;
   for (const Vec2& p : run.points) {
-    const double distance_squared = SquaredDistance(p, spot);
+    const double distance_squared = RunSquaredDistance(run, p, spot);
     if (distance_squared < run.spacing * run.spacing) return false;
     reachable = reachable || distance_squared <= run.outer_radius * run.outer_radius;
   }
@@ -70,8 +91,9 @@ std::optional<Vec2> SpotOfTOutside(const CellsRun& run, const std::vector<Rect>&
                                    int* spots_in_t, double per_spacing = 24.0) {
   const double step = run.spacing / per_spacing;
   *spots_in_t = 0;
-  for (double y = run.domain.y0 + 0.37 * step; y < run.domain.y1; y += step) {
-    for (double x = run.domain.x0 + 0.61 * step; x < run.domain.x1; x += step) {
+  const Rect& r = run.domain.rect;
+  for (double y = r.y0 + 0.37 * step; y < r.y1; y += step) {
+    for (double x = r.x0 + 0.61 * step; x < r.x1; x += step) {
       const Vec2 spot{x, y};
       if (!InT(run, spot)) continue;
       ++*spots_in_t;
@@ -84,9 +106,9 @@ std::optional<Vec2> SpotOfTOutside(const CellsRun& run, const std::vector<Rect>&
 // The points: in the domain and at least s apart.
 void ExpectSpaced(const CellsRun& run) {
   for (size_t i = 0; i < run.points.size(); ++i) {
-    EXPECT_TRUE(run.domain.Contains(run.points[i]));
+    EXPECT_TRUE(run.domain.rect.Contains(run.points[i]));
     for (size_t j = 0; j < i; ++j) {
-      ASSERT_GE(SquaredDistance(run.points[i], run.points[j]), run.spacing * run.spacing);
+      ASSERT_GE(RunSquaredDistance(run, run.points[i], run.points[j]), run.spacing * run.spacing);
     }
   }
 }
@@ -127,6 +149,62 @@ TEST(CellDartsTest, HandOffLeavesOnlyFinestCellsAndTheyHoldT) {
   std::printf("open cells at the hand-off over 6 runs: %d\n", open_cells);
 }
 
+// Reach::kAnywhere (A1 at density 2: dart throwing), on rectangles and tori: the open cells hold
+// every available spot throughout (with wrap-around distances on the tori), and at the hand-off
+// every available spot also lies within r' of a point, so that the neighbourhoods finish it.
+TEST(CellDartsTest, AnywhereOpenCellsHoldEveryAvailableSpot) {
+  int states_with_t = 0;
+  for (uint64_t seed = 1; seed <= 12; ++seed) {
+    const bool torus = seed % 2 == 0;
+    const auto run_to = [&](size_t stop) {
+      return RunCells(seed, stop, 16.0, CellDarts::Reach::kAnywhere, torus);
+    };
+    const size_t total = run_to(SIZE_MAX).points.size();
+    for (const size_t stop : {size_t{0}, size_t{1}, total / 2, total - 1, total}) {
+      const CellsRun run = run_to(stop);
+      SCOPED_TRACE(::testing::Message() << "seed " << seed << (torus ? " torus" : " rectangle")
+                                        << " points " << run.points.size() << " of " << total);
+      int spots_in_t = 0;
+      const std::optional<Vec2> outside = SpotOfTOutside(run, run.open, &spots_in_t);
+      EXPECT_FALSE(outside.has_value()) << "spot " << outside->x << ", " << outside->y;
+      states_with_t += spots_in_t > 0;
+      ExpectSpaced(run);
+    }
+    // At the hand-off: no available spot beyond r' of every point.
+    CellsRun near = run_to(SIZE_MAX);
+    near.reach = CellDarts::Reach::kNearPoints;
+    CellsRun anywhere = near;
+    anywhere.reach = CellDarts::Reach::kAnywhere;
+    int near_spots = 0, anywhere_spots = 0;
+    (void)SpotOfTOutside(near, near.open, &near_spots);
+    (void)SpotOfTOutside(anywhere, anywhere.open, &anywhere_spots);
+    EXPECT_EQ(near_spots, anywhere_spots) << seed;
+  }
+  EXPECT_GE(states_with_t, 36);
+}
+
+// The wrap-around matters: a torus run checked as a rectangle (no images) must show a pair
+// closer than s across an edge in some run, or the torus tests above prove nothing about it.
+TEST(CellDartsTest, TorusRunsHavePairsAcrossTheEdges) {
+  int runs_with_close_pairs = 0;
+  for (uint64_t seed = 2; seed <= 12; seed += 2) {
+    const CellsRun run = RunCells(seed, SIZE_MAX, 16.0, CellDarts::Reach::kAnywhere, true);
+    double closest_plain = INFINITY;
+    for (size_t i = 0; i < run.points.size(); ++i) {
+      for (size_t j = 0; j < i; ++j) {
+        if (RunSquaredDistance(run, run.points[i], run.points[j]) <
+            SquaredDistance(run.points[i], run.points[j])) {
+          closest_plain =
+              std::min(closest_plain, RunSquaredDistance(run, run.points[i], run.points[j]));
+        }
+      }
+    }
+    // Pairs whose nearest image is across an edge, as close as neighbours get.
+    runs_with_close_pairs += closest_plain < 1.5 * 1.5 * run.spacing * run.spacing;
+  }
+  EXPECT_EQ(runs_with_close_pairs, 6);
+}
+
 // A domain that ends just past a cell line leaves a column of cells almost wholly outside it,
 // which darts nearly always miss through the edge: they must still be split and retired (the
 // benchmark's 1k-point square, 35.36 d a side, once hung here).
@@ -141,7 +219,7 @@ TEST(CellDartsTest, FinishesWhenTheDomainEndsJustPastACellLine) {
     cells.AddPoint(points[0]);
     Rng rng(7);
     cells.Run(rng, points);
-    CellsRun run{domain, spacing, 2 * d, points, {}};
+    CellsRun run{{domain, false}, spacing, 2 * d, CellDarts::Reach::kNearPoints, points, {}};
     cells.ForEachOpenCell([&](const Rect& c) { run.open.push_back(c); });
     int spots_in_t = 0;
     EXPECT_FALSE(SpotOfTOutside(run, run.open, &spots_in_t, 6.0).has_value()) << side;
@@ -158,8 +236,9 @@ TEST(CellDartsTest, PlantedMissingCellIsCaught) {
     // Find a spot of T, drop the cell holding it: the check must now fail.
     std::optional<Vec2> spot;
     const double step = run.spacing / 24.0;
-    for (double y = run.domain.y0 + 0.37 * step; y < run.domain.y1 && !spot; y += step) {
-      for (double x = run.domain.x0 + 0.61 * step; x < run.domain.x1 && !spot; x += step) {
+    const Rect& r = run.domain.rect;
+    for (double y = r.y0 + 0.37 * step; y < r.y1 && !spot; y += step) {
+      for (double x = r.x0 + 0.61 * step; x < r.x1 && !spot; x += step) {
         if (InT(run, {x, y})) spot = Vec2{x, y};
       }
     }

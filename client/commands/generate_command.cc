@@ -116,7 +116,9 @@ CommandRunner RegisterGenerate(CLI::App& app) {
   command->add_option("--domain", arguments->domain, "Rectangle X0,Y0,X1,Y1 (half-open)")
       ->capture_default_str();
   command->add_flag("--torus", arguments->torus, "Wrap the domain's opposite edges");
-  command->add_option("--density", arguments->density, "r'/2r in (1, 2] for a1 and a2")
+  command
+      ->add_option("--density", arguments->density,
+                   "r'/2r in (1, 2] for a1 and a2; a1 at 2 is exact dart throwing")
       ->capture_default_str();
   command->add_option("--seed", arguments->seed, "Random seed, 0..2^64-1")
       ->type_name("UINT")

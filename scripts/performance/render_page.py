@@ -72,7 +72,8 @@ def bounded_samplers(run):
     methods = (("bridson_baseline", "Bridson, k = 30 (baseline)"),
                ("a3", "**A3**, boundary sampling"),
                ("a2", "**A2**, O(N) dart throwing"),
-               ("a1", "**A1**, dart throwing with cells"),
+               ("a1", "**A1**, exact dart throwing with cells"),
+               ("a1_paper", "the paper's A1 (within r' = 2 d), with cells"),
                ("dart", "dart throwing, 1000 misses (not maximal)"),
                ("best_candidate", "Mitchell's best candidate (k = 1)"))
 
@@ -98,6 +99,12 @@ def bounded_samplers(run):
                          f"{si(pps)} ({ratio(pps, base['points_per_second'])})")
         bytes_cell = f"{last['peak_bytes_per_point']:.0f}" if last else "–"
         out.append(f"| {label} | {' | '.join(cells)} | {bytes_cell} |\n")
+    exact = [(n, row_for("a1", n), row_for("a1_paper", n)) for n in sizes]
+    exact = [f"{ratio(a['points_per_second'], p['points_per_second'])} at N ≈ {si(n)}"
+             for n, a, p in exact if a and p]
+    if exact:
+        out.append("\nExact A1 against the paper's A1 (its speed before it became exact; target: at\n"
+                   f"least 1x): {', '.join(exact)}.\n")
     return "".join(out)
 
 
@@ -120,6 +127,63 @@ def radius_fields(run):
         f"| uniform A3 (baseline) | {si(u)} | 1 | {ratio(u, b)} |\n",
         f"| **SampleField**, noise field | {si(f)} | **{ratio(f, u)}** | **{ratio(f, b)}** |\n",
         f"| field Bridson, k = 30 (not maximal) | {si(b)} | {ratio(b, u)} | 1 |\n"])
+
+
+def radius_fields_on_the_plane(run):
+    rows = medians(load_json("field_bench.json"))
+    size = "250k/250000" if "plane_cold_uniform_a3_250k/250000" in rows else "smoke/10000"
+    uniform, field = (rows.get(f"plane_cold_{name}_{size}") for name in ("uniform_a3", "field_noise8"))
+    if not (uniform and field):
+        return MISSING
+    u, f = (r["points_per_second"] for r in (uniform, field))
+    return "".join([
+        command_block(run, "field_bench"), "\n",
+        f"A cold query (a fresh one-thread engine, so every region it needs is generated) of a\n"
+        f"square holding about {'250k' if size.startswith('250k') else '10k'} points: the noise"
+        " field world (r_max / r_min = 8, regions of\n"
+        "6 r_max) against the uniform A3 world at d = 1 on a square of the same point count.\n"
+        "Target (issue 24): at least 0.5x.\n\n",
+        "| world | points/s | against uniform |\n", "|---|---|---|\n",
+        f"| uniform A3 (baseline) | {si(u)} | 1 |\n",
+        f"| **noise field** | {si(f)} | **{ratio(f, u)}** |\n"])
+
+
+def layered_worlds(run):
+    rows = medians(load_json("layers_bench.json"))
+    size = "250k/250000" if "layers_cold_250k/250000" in rows else "smoke/5000"
+    names = ("uniform_cold", "layers_cold", "studio_passes")
+    uniform, layered, studio = (rows.get(f"{name}_{size}") for name in names)
+    if not (uniform and layered and studio):
+        return MISSING
+
+    def empty(row, layer):
+        value = row.get(f"empty_{layer}_in_d")
+        return f"{value:+.3f} d" if value is not None else ""
+
+    def line(label, row):
+        cells = [label, f"{row['points'] / 1e3:.1f}k", si(row["points_per_second"]),
+                 ratio(row["points_per_second"], uniform["points_per_second"])]
+        cells += [empty(row, layer) for layer in ("trees", "bushes", "rocks")]
+        return "| " + " | ".join(cells) + " |\n"
+
+    return "".join([
+        command_block(run, "layers_bench"), "\n",
+        "Trees (d 8), bushes (3) and rocks (1.5), the default matrix (`bench/layers_bench.cc`):\n"
+        "a cold query (a fresh one-thread engine) of a square holding about "
+        f"{'250k' if size.startswith('250k') else '5k'} points, against\n"
+        "the one-layer uniform A3 world of d = 1.5 on the same square, and against the studios'\n"
+        "way: three passes of bounded A3 on the square, each pass's points dropped within D of a\n"
+        "point an earlier pass kept. \"Empty\" is each layer's largest slack\n"
+        "min(|x - q| - d, |x - c| - D) over the central 150 x 150, probed every d / 20: positive\n"
+        "means a point of that layer still fits (the layer is not maximal). Targets (issue 19):\n"
+        "at least 0.5x the one-layer world, at least the studios' speed, maximal where they are\n"
+        "not.\n\n",
+        "| world | points | points/s | against uniform | empty trees | empty bushes |"
+        " empty rocks |\n",
+        "|---|---|---|---|---|---|---|\n",
+        line("uniform A3, d = 1.5 (baseline)", uniform),
+        line("**three layers**", layered),
+        line("studios' pruned passes", studio)])
 
 
 def infinite_plane(run):
@@ -253,14 +317,28 @@ def http_tiles(run):
         keep=lambda line: bool(line.strip()) and not line.startswith("#"))
 
 
+def nginx_tiles(run):
+    return text_section(
+        run, "nginx_tiles",
+        "nginx with deploy/nginx/scallop.conf's tile cache in front of one scallopd\n"
+        "(`--http-listen`, `--threads 2`): a square of tiles asked cold through nginx (a MISS\n"
+        "that scallopd generates) and again (a HIT no replica sees); then the warm tiles from\n"
+        "nginx's cache against scallopd directly, one keep-alive connection each, the two\n"
+        "ways taking turns (docs/tiles.md):\n",
+        keep=lambda line: bool(line.strip()) and not line.startswith("#"))
+
+
 def main():
     run = load_json("run.json") or {}
     sections = (("Bounded samplers", bounded_samplers), ("Radius fields, bounded", radius_fields),
+                ("Radius fields on the plane", radius_fields_on_the_plane),
+                ("Layered worlds", layered_worlds),
                 ("Infinite plane", infinite_plane), ("Cold tiles", cold_tiles),
                 ("Nearest lookups", nearest), ("Deterministic math", deterministic_math),
                 ("Verifier", verifier), ("Follow: a walking player", follow),
                 ("Service under load", service_load),
-                ("HTTP tiles against GetPoints", http_tiles))
+                ("HTTP tiles against GetPoints", http_tiles),
+                ("Tiles through nginx's cache", nginx_tiles))
     head = f"""# Performance
 
 <!-- Generated by scripts/make-performance-page.sh from one run; edit the renderer

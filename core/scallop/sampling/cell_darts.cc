@@ -13,8 +13,12 @@ constexpr double kCoverageMargin = 1e-9;
 
 }  // namespace
 
-CellDarts::CellDarts(const Rect& domain, double min_distance, double spacing, double outer_radius)
-    : domain_(domain),
+CellDarts::CellDarts(const Domain& domain, double min_distance, double spacing, double outer_radius,
+                     Reach reach)
+    : domain_(domain.rect),
+      torus_(domain.torus),
+      reach_kind_(reach),
+      reach_(reach == Reach::kAnywhere ? spacing : outer_radius),
       spacing_(spacing),
       spacing_squared_(spacing * spacing),
       covered_squared_(spacing * spacing * (1.0 - kCoverageMargin)),
@@ -23,9 +27,10 @@ CellDarts::CellDarts(const Rect& domain, double min_distance, double spacing, do
       // PointGrid's cells (BoundaryGrid's are a millionth smaller): a point
       // covers its own cell, whose diagonal is just under d.
       cell_size_(min_distance / std::sqrt(2.0) * (1.0 - 1e-9)),
-      columns_(static_cast<int64_t>(std::floor(domain.Width() / cell_size_)) + 1),
-      rows_(static_cast<int64_t>(std::floor(domain.Height() / cell_size_)) + 1),
-      grid_(domain, min_distance, 0.0) {
+      columns_(static_cast<int64_t>(std::floor(domain.rect.Width() / cell_size_)) + 1),
+      rows_(static_cast<int64_t>(std::floor(domain.rect.Height() / cell_size_)) + 1),
+      // On a torus the images filed across the edges lie within s of the rectangle.
+      grid_(domain.rect, min_distance, domain.torus ? spacing : 0.0) {
   const auto cells = static_cast<size_t>(columns_ * rows_);
   state_.assign(cells, kUntouched);
   corners_.assign(cells, 0);
@@ -34,6 +39,16 @@ CellDarts::CellDarts(const Rect& domain, double min_distance, double spacing, do
   for (int level = 0; level <= kFinestLevel; ++level) {
     side_[level] = std::ldexp(cell_size_, -level);
     area_[level] = side_[level] * side_[level];
+  }
+  if (reach_kind_ == Reach::kAnywhere) {
+    for (int32_t id = 0; id < static_cast<int32_t>(cells); ++id) {
+      const Rect cell = InDomain(TopCell(id));
+      if (cell.x0 < cell.x1 && cell.y0 < cell.y1) {
+        Open(id);
+      } else {
+        state_[static_cast<size_t>(id)] = kClosed;  // starts on the domain's far edge: no spot
+      }
+    }
   }
 }
 
@@ -159,12 +174,38 @@ void CellDarts::AddPoint(Vec2 p) {
   const int32_t own = TopCellId(p);
   // A point in a split cell leaves its children open: darts there miss and retire them.
   if (state_[static_cast<size_t>(own)] != kSplit) Close(own);
-  const int64_t own_column = own % columns_, own_row = own / columns_;
-  const auto reach = static_cast<int64_t>(std::ceil(outer_radius_ / cell_size_));
-  for (int64_t row = std::max<int64_t>(own_row - reach, 0);
-       row <= std::min<int64_t>(own_row + reach, rows_ - 1); ++row) {
-    for (int64_t column = std::max<int64_t>(own_column - reach, 0);
-         column <= std::min<int64_t>(own_column + reach, columns_ - 1); ++column) {
+  UpdateCellsAround(p);
+  if (!torus_) return;
+  // The images whose s-disk reaches into the rectangle (those across an edge and, near a
+  // corner, across both).
+  const double width = domain_.Width(), height = domain_.Height();
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      if (dx == 0 && dy == 0) continue;
+      const Vec2 image{p.x + dx * width, p.y + dy * height};
+      if (SquaredDistance(domain_, image) < spacing_squared_) {
+        grid_.Insert(-1, image);
+        UpdateCellsAround(image);
+      }
+    }
+  }
+}
+
+void CellDarts::UpdateCellsAround(Vec2 p) {
+  // Columns and rows of cells within reach_ of p (which may lie off the rectangle: an image),
+  // one more each way, which covers rounding and truncation towards zero (floor is a libm
+  // call without SSE4.1); each cell is measured below.
+  const double per_cell = 1.0 / cell_size_;
+  const auto first = [&](double v, double origin) {
+    return static_cast<int64_t>((v - reach_ - origin) * per_cell) - 1;
+  };
+  const auto last = [&](double v, double origin) {
+    return static_cast<int64_t>((v + reach_ - origin) * per_cell) + 1;
+  };
+  for (int64_t row = std::max<int64_t>(first(p.y, domain_.y0), 0);
+       row <= std::min<int64_t>(last(p.y, domain_.y0), rows_ - 1); ++row) {
+    for (int64_t column = std::max<int64_t>(first(p.x, domain_.x0), 0);
+         column <= std::min<int64_t>(last(p.x, domain_.x0), columns_ - 1); ++column) {
       const auto id = static_cast<int32_t>(row * columns_ + column);
       const State state = state_[static_cast<size_t>(id)];
       if (state == kClosed || state == kSplit) continue;
@@ -272,13 +313,14 @@ void CellDarts::Run(Rng& rng, std::vector<Vec2>& placed, size_t max_points) {
     // Outside the domain is a miss too: a cell mostly outside it is then split, and its
     // children wholly outside are dropped.
     const bool inside = domain_.Contains(dart);
-    // In T: no point within s (most darts stop here), and one within r'. GatherNear keeps
-    // exactly the points closer than its limit, so the counts answer both.
+    // In T: no point within s (most darts stop here), and with kNearPoints one within r'.
+    // GatherNear keeps exactly the points closer than its limit, so the counts answer both.
     const bool available =
         inside && grid_.GatherNear(dart, spacing_, spacing_squared_, -1, nearby_) == 0;
-    // A dart beyond r' of every point counts as a miss too: splitting then isolates such
-    // spots, which the caller's neighbourhoods finish like any other.
-    if (!available || grid_.GatherNear(dart, outer_radius_, outer_squared_, -1, nearby_) == 0) {
+    // With kNearPoints a dart beyond r' of every point counts as a miss too: splitting then
+    // isolates such spots, which the caller's neighbourhoods finish like any other.
+    if (!available || (reach_kind_ == Reach::kNearPoints &&
+                       grid_.GatherNear(dart, outer_radius_, outer_squared_, -1, nearby_) == 0)) {
       Missed(level, index);
       if (++misses_in_a_row == kMaxMissesInARow) return;
       continue;

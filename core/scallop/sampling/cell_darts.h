@@ -1,19 +1,28 @@
-// CellDarts: the bulk of A1 on a rectangle, run with grid cells instead of neighbourhoods.
+// CellDarts: the bulk of A1, run with grid cells instead of neighbourhoods.
 //
-// A1 places each next point uniformly over T, the spots of the domain at least s (the spacing)
-// from every point and within r' of one: the union of the points' neighbourhoods. A dart drawn
-// uniformly from any union of cells that holds T, and kept only when it lands in T, follows the
-// same law, and needs no neighbourhood. The cells are the point grid's (side just under
-// d / sqrt 2, so a point covers its own cell). A cell opens once it comes within r' of a point,
-// and closes when a point lands in it or when the s-disks around it provably cover it (every
-// edge covered, every crossing of two circles inside it covered by a third, with a margin far
-// above rounding). A cell that darts keep missing is split in four and its children tested the
-// same way (the refinement of Ebeida et al. 2011), down to kFinestLevel.
+// A1 places each next point uniformly over T, the spots it may draw from: with Reach::kAnywhere
+// every available spot of the domain (at least s, the spacing, from every point: dart throwing
+// itself), with Reach::kNearPoints only those within r' of a point (the paper's A1, whose
+// restriction packs denser below r' = 2 d). A dart drawn uniformly from any union of cells that
+// holds T, and kept only when it lands in T, follows the same law, and needs no neighbourhood.
+// The cells are the point grid's (side just under d / sqrt 2, so a point covers its own cell).
+// With kAnywhere every cell is open from the start; with kNearPoints a cell opens once it comes
+// within r' of a point. A cell closes when a point lands in it or when the s-disks around it
+// provably cover it (every edge covered, every crossing of two circles inside it covered by a
+// third, with a margin far above rounding). A cell that darts keep missing is split in four and
+// its children tested the same way (the refinement of Ebeida et al. 2011), down to kFinestLevel.
 //
 // Run stops once only finest-level cells are left open: they hold the last, thin voids, where
-// darts almost never land. The caller then finishes with exact neighbourhoods, built only for
-// the points within r' of an open cell (ForEachOpenCell); no other point's neighbourhood can be
-// non-empty, since T lies inside the open cells.
+// darts almost never land. The caller then finishes with exact neighbourhoods of radius r',
+// built only for the points within r' of an open cell (ForEachOpenCell); no other point's
+// neighbourhood can be non-empty, since T lies inside the open cells. With kAnywhere (used at
+// r' = 2 d) that finish draws from all of T too: a spot of the domain farther than r' from every
+// point would be the centre of an available disk of radius r' - s (about d), whose part in the
+// domain (a quarter of it at worst, in a corner) holds a whole level-1 cell; no dart in that
+// cell can miss, so it is never split or closed, and Run would not have stopped.
+//
+// On a torus (kAnywhere only) a point near an edge also files its images across that edge, so
+// that coverage and the spacing test see distances with wrap-around.
 #pragma once
 
 #include <cstddef>
@@ -21,6 +30,7 @@
 #include <span>
 #include <vector>
 
+#include "scallop/geometry/domain.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
 #include "scallop/random/rng.h"
@@ -33,12 +43,20 @@ class CellDarts {
   static constexpr int kFinestLevel = 8;      // cells 2^-8 of the grid's side
   static constexpr int kFailuresToSplit = 6;  // darts a cell misses before it is split or retested
 
-  // REQUIRES: a non-empty rectangle, 0 < min_distance <= spacing < outer_radius <= 2 spacing.
-  CellDarts(const Rect& domain, double min_distance, double spacing, double outer_radius);
+  // Which spots T holds: see the top of this file.
+  enum class Reach { kNearPoints, kAnywhere };
+
+  // REQUIRES: a non-empty rectangle, 0 < min_distance <= spacing < outer_radius <= 2 spacing;
+  // a torus only with kAnywhere, its sides at least 4 spacing.
+  CellDarts(const Domain& domain, double min_distance, double spacing, double outer_radius,
+            Reach reach = Reach::kNearPoints);
+  CellDarts(const Rect& domain, double min_distance, double spacing, double outer_radius)
+      : CellDarts(Domain{domain, false}, min_distance, spacing, outer_radius) {}
 
   // Adds a point placed by the caller (the seed): it closes, covers and opens cells as a
   // dart does. REQUIRES: p in the domain, at least `spacing` from every point added.
-  // Cost: O((r' / d)^2) cells, a coverage test for each whose corners it completes.
+  // Cost: O((r' / d)^2) cells (O(1) with kAnywhere), a coverage test for each whose corners
+  // it completes.
   void AddPoint(Vec2 p);
 
   // Throws darts until no cell coarser than the finest level is open, or `placed` holds
@@ -70,6 +88,9 @@ class CellDarts {
   // The part of `cell` in the (closed) domain: the only part that can hold spots of T.
   Rect InDomain(const Rect& cell) const;
   int32_t TopCellId(Vec2 p) const;
+  // What a disk centred at p (a point, or on a torus one of its images) does to the cells
+  // within reach_ of it: opens the untouched ones within r', covers corners within s.
+  void UpdateCellsAround(Vec2 p);
   void Open(int32_t id);
   void Close(int32_t id);
   // Bits 0-3: which corners of the cell `disk` covers with room to spare.
@@ -85,6 +106,9 @@ class CellDarts {
   void Missed(int level, size_t index);
 
   Rect domain_;
+  bool torus_;
+  Reach reach_kind_;
+  double reach_;  // how far a point's disk can change a cell: r', or s with kAnywhere
   double spacing_;
   double spacing_squared_;
   double covered_squared_;  // a disk "surely" holds spots this close to its centre

@@ -115,7 +115,9 @@ StatusOr<std::vector<Vec2>> Sample(const SamplerOptions& options) {
   Rng rng(HashWords({options.seed, static_cast<uint64_t>(options.algorithm)}));
   switch (options.algorithm) {
     case Algorithm::kA1:
-      return SampleScalloped(problem, CandidateChoice::kByArea, rng);
+      // Density 2 is dart throwing, exactly; below it the paper's restriction to r' packs denser.
+      return SampleScalloped(problem, CandidateChoice::kByArea, rng, A1Bulk::kCells,
+                             options.density == 2.0 ? A1Reach::kAnywhere : A1Reach::kNearPoints);
     case Algorithm::kA2:
       return SampleScalloped(problem, CandidateChoice::kUniform, rng);
     case Algorithm::kA3:

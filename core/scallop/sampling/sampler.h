@@ -2,7 +2,9 @@
 // then run the chosen algorithm. Points come back in generation order.
 //
 // Algorithms (Dunbar & Humphreys 2006, see docs/design.md):
-//   kA1  exact dart-throwing emulation with scalloped sectors, O(N log N)
+//   kA1  dart throwing run to exhaustion, exactly, at density 2 (cells, then scalloped
+//        sectors for the last voids); below 2, the paper's A1, restricted to spots within r'
+//        of the set, O(N log N)
 //   kA2  A1 with the candidate chosen uniformly, O(N)
 //   kA3  boundary sampling, O(N)
 // Baselines, for comparison only:
@@ -39,7 +41,8 @@ struct SamplerOptions {
   // Minimum distance d between any two points (the paper's 2r).
   double min_distance = 1.0;
   // r' / 2r in (1, 2]: the outer radius of A1 and A2 neighbourhoods over d.
-  // 2 is exact dart throwing; smaller gives denser sets. Ignored by others.
+  // For A1, 2 is exact dart throwing (new points anywhere still available); smaller restricts
+  // new points to within r' of the set, which gives denser sets. Ignored by others.
   double density = 2.0;
   uint64_t seed = 0;
   // Dart throwing stops after this many rejected darts in a row...

@@ -33,10 +33,12 @@ constexpr double kSliverShare = 0.02;
 
 class ScallopedSampler {
  public:
-  ScallopedSampler(const SamplingProblem& problem, CandidateChoice choice, A1Bulk bulk, Rng& rng)
+  ScallopedSampler(const SamplingProblem& problem, CandidateChoice choice, A1Bulk bulk,
+                   A1Reach reach, Rng& rng)
       : problem_(problem),
         choice_(choice),
         bulk_(bulk),
+        anywhere_(choice == CandidateChoice::kByArea && reach == A1Reach::kAnywhere),
         rng_(rng),
         outer_radius_(problem.density * problem.min_distance),
         spacing_(
@@ -75,6 +77,7 @@ class ScallopedSampler {
   // densities below kMinCellsDensity: with r' that close to s, T is a thin band around each
   // point, most darts land beyond it, and cells were slower (0.6-0.75x at 1.05, 1.35x at 1.1).
   bool UsesCells() const {
+    if (anywhere_) return true;  // kAnywhere's REQUIRES
     return choice_ == CandidateChoice::kByArea && bulk_ == A1Bulk::kCells &&
            problem_.density >= kMinCellsDensity && !problem_.domain.torus &&
            problem_.fixed_points.empty() && problem_.inert_points.empty() &&
@@ -86,9 +89,14 @@ class ScallopedSampler {
   // its open cells (which hold every spot still available and reachable) get theirs, exactly as
   // AddPoint and the cuts since would have left them.
   void RunCells() {
-    CellDarts cells(problem_.domain.rect, problem_.min_distance, spacing_, outer_radius_);
-    std::vector<Vec2> placed = {SeedPoint(problem_, rng_)};
-    cells.AddPoint(placed[0]);
+    CellDarts cells(problem_.domain, problem_.min_distance, spacing_, outer_radius_,
+                    anywhere_ ? CellDarts::Reach::kAnywhere : CellDarts::Reach::kNearPoints);
+    // Near points only, the set grows from one uniform point; anywhere, the first dart is one.
+    std::vector<Vec2> placed;
+    if (!anywhere_) {
+      placed.push_back(SeedPoint(problem_, rng_));
+      cells.AddPoint(placed[0]);
+    }
     cells.Run(rng_, placed);
     points_.reserve(placed.size());
     for (const Vec2& p : placed) {
@@ -117,7 +125,7 @@ class ScallopedSampler {
     const Vec2 x = points_[static_cast<size_t>(index)];
     ScallopedRegion& region = scratch_region_;
     region.AssignMoved(annulus_, x);
-    ClipToDomain(region);
+    if (!problem_.domain.torus) ClipToDomain(region);
     nearby_.clear();
     const double reach = outer_radius_ + spacing_;
     grid_.ForEachNear(x, 2 * outer_radius_, [&](int32_t other, Vec2 q) {
@@ -179,9 +187,8 @@ class ScallopedSampler {
     if (!problem_.domain.torus && !problem_.domain.rect.Contains(x)) return false;
     if (InCoveredRect(problem_, x)) return false;
     bool fits = true;
-    grid_.ForEachNear(x, problem_.min_distance, [&](int32_t, Vec2 q) {
-      fits = fits && SquaredDistance(q, x) >= d_squared_;
-    });
+    grid_.ForEachNear(x, problem_.min_distance,
+                      [&](int32_t, Vec2 q) { fits = fits && SquaredDistance(q, x) >= d_squared_; });
     return fits;
   }
 
@@ -279,7 +286,8 @@ class ScallopedSampler {
                                          outer_radius_ * outer_radius_;
       open_near_stop_ += static_cast<int64_t>(open_near) - open_near_stop_flags_[i];
       open_near_stop_flags_[i] = open_near;
-      if (choice_ == CandidateChoice::kByArea) near_stop_areas_.Set(i, open_near ? region.Area() : 0.0);
+      if (choice_ == CandidateChoice::kByArea)
+        near_stop_areas_.Set(i, open_near ? region.Area() : 0.0);
     }
   }
 
@@ -302,6 +310,7 @@ class ScallopedSampler {
   const SamplingProblem& problem_;
   const CandidateChoice choice_;
   const A1Bulk bulk_;
+  const bool anywhere_;  // A1Reach::kAnywhere
   Rng& rng_;
   const double outer_radius_;  // r'
   const double spacing_;       // s: d plus the rounding margin
@@ -310,11 +319,11 @@ class ScallopedSampler {
   std::vector<Vec2> points_;
   size_t fixed_count_ = 0;
   std::vector<ScallopedRegion> neighbourhoods_;
-  std::vector<Nearby> nearby_;  // scratch of AddPoint
-  std::vector<Nearby> in_reach_;    // scratch of AddPoint: points whose neighbourhood x may cut
-  ScallopedRegion scratch_region_;  // scratch of AddPoint
-  const ScallopedRegion annulus_;   // every new point's annulus s..r', made once, moved to each
-  AreaSumTree areas_;             // A1
+  std::vector<Nearby> nearby_;       // scratch of AddPoint
+  std::vector<Nearby> in_reach_;     // scratch of AddPoint: points whose neighbourhood x may cut
+  ScallopedRegion scratch_region_;   // scratch of AddPoint
+  const ScallopedRegion annulus_;    // every new point's annulus s..r', made once, moved to each
+  AreaSumTree areas_;                // A1
   std::vector<int32_t> candidates_;  // A2
   // With a stop rectangle: how many non-empty neighbourhoods belong to points
   // within r' of it (the only ones that can reach it), and which.
@@ -326,8 +335,8 @@ class ScallopedSampler {
 }  // namespace
 
 std::vector<Vec2> SampleScalloped(const SamplingProblem& problem, CandidateChoice choice, Rng& rng,
-                                  A1Bulk bulk) {
-  return ScallopedSampler(problem, choice, bulk, rng).Run();
+                                  A1Bulk bulk, A1Reach reach) {
+  return ScallopedSampler(problem, choice, bulk, reach, rng).Run();
 }
 
 }  // namespace scallop

@@ -1,4 +1,4 @@
-// A1 and A2: dart throwing emulated with scalloped sectors (Dunbar &
+// A1 and A2: dart throwing with scalloped sectors (Dunbar &
 // Humphreys 2006, section 3). Each point keeps its available neighbourhood,
 // the part of the annulus d..r' around it that no disk covers; new points are
 // drawn uniformly from a neighbourhood.
@@ -19,20 +19,32 @@ enum class CandidateChoice {
 // How A1 places the bulk of its points; both follow the same law (tests/cell_darts_test.cc and
 // tests/sampler_distribution_test.cc compare them).
 enum class A1Bulk {
-  // CellDarts (cell_darts.h) until only thin voids are left, then neighbourhoods, on plain
-  // rectangles (no fixed or inert points, covered or stop rectangles) at density 1.1 and up;
-  // elsewhere as below.
+  // CellDarts (cell_darts.h) until only thin voids are left, then neighbourhoods: with
+  // A1Reach::kAnywhere always, else on plain rectangles (no fixed or inert points, covered or
+  // stop rectangles) at density 1.1 and up; elsewhere as below.
   kCells,
   // The paper's neighbourhoods throughout.
   kNeighbourhoods,
 };
 
-// Samples until no neighbourhood is left. With density 2 (r' = 2d) and
-// kByArea the result is distributed as dart throwing run to exhaustion.
-// `bulk` matters for kByArea only.
+// Which available spots A1 draws its next point from (kByArea only).
+enum class A1Reach {
+  // Those within r' of a point: the paper's A1. Its sets grow from their frontier and are a
+  // little denser than dart throwing's even at r' = 2 d (docs/quality.md); below 2 d, denser.
+  kNearPoints,
+  // All of them, near and far: dart throwing run to exhaustion, exactly. Cells for the bulk
+  // (CellDarts with every cell open), neighbourhoods for the last voids, which by then all lie
+  // within r' of a point. REQUIRES: density 2, A1Bulk::kCells, and a plain problem (a
+  // rectangle or torus with no fixed or inert points, covered or stop rectangles).
+  kAnywhere,
+};
+
+// Samples until no neighbourhood is left (A1 with kAnywhere: until no spot is left).
+// `bulk` and `reach` matter for kByArea only.
 // REQUIRES: a problem that ValidateSamplerOptions accepted.
 // Cost: A1 O(N log N) (a sum tree over areas; with cells, O(N) expected for the bulk), A2 O(N).
 std::vector<Vec2> SampleScalloped(const SamplingProblem& problem, CandidateChoice choice, Rng& rng,
-                                  A1Bulk bulk = A1Bulk::kCells);
+                                  A1Bulk bulk = A1Bulk::kCells,
+                                  A1Reach reach = A1Reach::kNearPoints);
 
 }  // namespace scallop
