@@ -31,7 +31,7 @@ fi
 
 targets=(samplers_bench field_bench plane_bench nearest_bench deterministic_math_bench
   follow_bench cold_tile_latency load_generator null_server scallopd delaunay_verifier_test
-  http_tiles_bench nginx_tiles_bench wire_bench)
+  http_tiles_bench nginx_tiles_bench wire_bench layers_bench)
 if [[ ${SKIP_BUILD:-0} != 1 ]]; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$build" -j2 --target "${targets[@]}"
@@ -55,6 +55,7 @@ bench() {
 if ((quick)); then
   bench samplers_bench --benchmark_filter='/1000/' --benchmark_min_time=0.01
   bench field_bench --benchmark_filter=smoke --benchmark_min_time=0.01
+  bench layers_bench --benchmark_filter=smoke --benchmark_min_time=0.01
   bench plane_bench --benchmark_min_time=0.01
   bench nearest_bench --benchmark_min_time=0.01
   bench deterministic_math_bench --benchmark_filter='Atan2' --benchmark_min_time=0.01
@@ -67,6 +68,7 @@ if ((quick)); then
 else
   bench samplers_bench
   bench field_bench --benchmark_filter='1M|250k'
+  bench layers_bench --benchmark_filter=250k
   bench plane_bench
   bench nearest_bench
   bench deterministic_math_bench

@@ -358,4 +358,78 @@ for command in plane verify; do
   expect_bad_argument "--algorithm" $command --rect 0,0,8,8 --radius-noise 1,2,0.01 --algorithm a2
 done
 
+# --- Layered worlds (issue 19) ----------------------------------------------
+forest=(--seed 7 --layer trees=8 --layer bushes=3 --layer rocks=1.5)
+expect_exit 0 plane "${forest[@]}" --rect -20,-20,20,20
+check "plane layers: CSV header is id,x,y,layer" test "$(head -n 1 "$work/out")" = "id,x,y,layer"
+check "plane layers: every layer present" \
+  test "$(tail -n +2 "$work/out" | cut -d, -f4 | sort -u | tr '\n' ' ')" = "bushes rocks trees "
+cp "$work/out" "$work/forest.csv"
+expect_exit 0 plane "${forest[@]}" --rect -20,-20,20,20 --layers rocks,trees
+check "plane --layers: the unfiltered rows of those layers" \
+  test "$(tail -n +2 "$work/out" | sort)" = "$(grep -v ',bushes$' "$work/forest.csv" | tail -n +2 | sort)"
+expect_exit 0 plane "${forest[@]}" --layer ferns=noise:1,2,0.02 --rect -10,-10,10,10
+check "plane field layer: CSV header is id,x,y,layer,r" \
+  test "$(head -n 1 "$work/out")" = "id,x,y,layer,r"
+expect_exit 0 plane "${forest[@]}" --rect -20,-20,20,20 --format svg
+check "plane layers SVG: a legend" grep -qF '>bushes</text>' "$work/out"
+# Tiles and threads: the same rows as one query.
+rows "$work/whole" "${forest[@]}" --rect -20,-20,20,20 --threads 1
+rows "$work/left" "${forest[@]}" --rect -20,-20,3,20 --threads 3
+rows "$work/right" "${forest[@]}" --rect 3,-20,20,20
+check "plane layers: two tiles equal the whole" \
+  test "$(sort "$work/left" "$work/right")" = "$(cat "$work/whole")"
+# One layer is the plain world: the same id,x,y rows.
+rows "$work/plain" --seed 7 --min-distance 2 --rect -10,-10,10,10
+rows "$work/one" --seed 7 --layer only=2 --rect -10,-10,10,10
+check "plane one layer: the plain world's rows" \
+  test "$(cut -d, -f1-3 "$work/one")" = "$(cat "$work/plain")"
+expect_exit 0 verify "${forest[@]}" --exclusion rocks,trees=2.5 --rect -15,-15,15,15
+check "verify layers: pass" grep -qE '^result +pass$' "$work/out"
+check "verify layers: pairs across layers judged" grep -qE '^pairs across layers +[1-9]' "$work/out"
+expect_exit 0 verify "${forest[@]}" --rect -15,-15,15,15 --json
+check "verify layers --json: layered passed" grep -qF '"cross_conflicts":0' "$work/out"
+expect_exit 0 analyze "${forest[@]}" --rect 0,0,60,60 --sets 2 --json --png "$work/layers.png"
+check "analyze layers: each layer and the union" \
+  python3 -c "import json,sys; a=json.load(open('$work/out')); sys.exit([l['name'] for l in a['layers']] != ['trees','bushes','rocks','union'])"
+check "analyze layers: no pair across layers closer than D" \
+  python3 -c "import json,sys; a=json.load(open('$work/out')); sys.exit(any(sum(c['neighbours_per_point'][:20]) for c in a['cross']))"
+check "analyze layers: 6 cross histograms" \
+  python3 -c "import json,sys; a=json.load(open('$work/out')); sys.exit(len(a['cross']) != 6)"
+check "analyze layers --png: a PNG" test "$(head -c 4 "$work/layers.png" | tail -c 3)" = PNG
+expect_bad_argument "--rect: a layered world" analyze "${forest[@]}" --domain 0,0,20,20
+expect_bad_argument "world.layers[1].name: 'trees' is already" plane --layer trees=8 --layer trees=3 --rect 0,0,8,8
+expect_bad_argument "world.exclusions[1]: the matrix is not symmetric" plane "${forest[@]}" \
+  --exclusion trees,bushes=2 --exclusion bushes,trees=3 --rect 0,0,8,8
+expect_bad_argument "world.exclusions[0].distance" plane "${forest[@]}" --exclusion trees,rocks=-1 \
+  --rect 0,0,8,8
+expect_bad_argument "--exclusion: values must be finite" plane "${forest[@]}" \
+  --exclusion trees,rocks=nan --rect 0,0,8,8
+expect_bad_argument "--exclusion: expected NAME,NAME=DISTANCE" plane "${forest[@]}" --exclusion trees=2 \
+  --rect 0,0,8,8
+expect_bad_argument "--layer: expected NAME=SPACING" plane --layer trees --rect 0,0,8,8
+expect_bad_argument "--layer ferns: field.frequency" plane --layer ferns=noise:1,4,0.5 --rect 0,0,8,8
+expect_bad_argument "--layers: no layer named 'oaks'" plane "${forest[@]}" --layers oaks --rect 0,0,8,8
+expect_exit 2 plane --layer trees=8 --min-distance 2 --rect 0,0,8,8
+# --world-file: the world as YAML, the schema of a named world in scallopd's config.
+cat >"$work/forest.yaml" <<'YAML'
+seed: 7
+layers:
+  - {name: trees, min_distance: 8}
+  - {name: bushes, min_distance: 3}
+  - {name: rocks, min_distance: 1.5}
+exclusions:
+  - {first: rocks, second: trees, distance: 2.5}
+YAML
+rows "$work/from-file" --world-file "$work/forest.yaml" --rect -10,-10,10,10
+rows "$work/from-flags" "${forest[@]}" --exclusion rocks,trees=2.5 --rect -10,-10,10,10
+check "plane --world-file: the same rows as the flags" cmp -s "$work/from-file" "$work/from-flags"
+printf 'seed: 7\nlayers:\n  - {name: a, min_distance: 2}\n  - {name: a, min_distance: 1}\n' \
+  >"$work/repeated.yaml"
+expect_bad_argument "--world-file $work/repeated.yaml: world.layers[1].name" \
+  plane --world-file "$work/repeated.yaml" --rect 0,0,5,5
+printf 'seed: 7\nlayrs: []\n' >"$work/typo.yaml"
+expect_bad_argument "unknown key 'layrs'" plane --world-file "$work/typo.yaml" --rect 0,0,5,5
+expect_exit 2 plane --world-file "$work/forest.yaml" --seed 3 --rect 0,0,5,5
+
 report cli_test

@@ -253,14 +253,7 @@ TEST(FieldPlaneTest, SamePointsForAnyTilingOrderThreadsAndCache) {
         ys.push_back(rng.Uniform(rect.y0, rect.y1));
       }
       xs.push_back(layout.side());  // a tile edge on a seam
-      std::sort(xs.begin(), xs.end());
-      std::sort(ys.begin(), ys.end());
-      std::vector<Rect> tiles;
-      for (size_t a = 0; a + 1 < xs.size(); ++a) {
-        for (size_t b = 0; b + 1 < ys.size(); ++b)
-          tiles.push_back({xs[a], ys[b], xs[a + 1], ys[b + 1]});
-      }
-      for (size_t k = tiles.size(); k > 1; --k) std::swap(tiles[k - 1], tiles[rng.Below(k)]);
+      const std::vector<Rect> tiles = ShuffledTiles(xs, ys, rng);
       PlanePoints assembled;
       for (const Rect& tile : tiles) {
         const PlanePoints part = MustPoints(engine, world, tile);

@@ -7,7 +7,10 @@ Usage: make_gray_png.py OUT KIND WIDTH HEIGHT
   KIND masked: as ramp, but column 0 is 0 (masked)
   KIND ramp16: 16-bit grey, v = 1 + (column + row) * 1000
   KIND rgb:    8-bit colour (the loader must refuse it)
+  KIND road:   8-bit, 255 but for a winding road 6 pixels wide that is 0 (masked): the README's
+               forest of layers
 """
+import math
 import struct
 import sys
 import zlib
@@ -29,6 +32,9 @@ def main():
         for column in range(width):
             if kind == "ramp16":
                 line += struct.pack(">H", min(65535, 1 + (column + row) * 1000))
+            elif kind == "road":
+                centre = height / 2 + height / 5 * math.sin(column / width * 2 * math.pi)
+                line.append(0 if abs(row + 0.5 - centre) < 3 else 255)
             elif kind == "rgb":
                 line += bytes([column % 256, row % 256, 7])
             else:

@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <vector>
 
+#include "scallop/geometry/rect.h"
 #include "scallop/plane/world.h"
 #include "scallop/random/rng.h"
 
@@ -26,6 +29,20 @@ inline World DiceWorld(Rng& dice, WorldAlgorithm algorithm, double d) {
   WorldSpec spec{.seed = dice.NextBits(), .min_distance = d, .algorithm = algorithm};
   if (UsesDensity(algorithm)) spec.density = dice.Uniform(1.05, 2.0);
   return ValidWorld(spec);
+}
+
+// The tiles of the grid whose column and row edges are xs and ys (sorted here), in an order
+// shuffled by `rng`: for tests that ask for a rectangle piece by piece in a random order.
+inline std::vector<Rect> ShuffledTiles(std::vector<double> xs, std::vector<double> ys, Rng& rng) {
+  std::sort(xs.begin(), xs.end());
+  std::sort(ys.begin(), ys.end());
+  std::vector<Rect> tiles;
+  for (size_t j = 0; j + 1 < ys.size(); ++j) {
+    for (size_t i = 0; i + 1 < xs.size(); ++i)
+      tiles.push_back({xs[i], ys[j], xs[i + 1], ys[j + 1]});
+  }
+  for (size_t k = tiles.size(); k > 1; --k) std::swap(tiles[k - 1], tiles[rng.Below(k)]);
+  return tiles;
 }
 
 }  // namespace scallop

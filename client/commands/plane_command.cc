@@ -24,12 +24,21 @@ int RunPlane(const PlaneArguments& arguments) {
   if (!query.ok()) return ReportBadArguments("plane", query.status());
   PlaneEngine engine(query->engine);
   // Points runs PlaneEngine::ValidateQuery first, so bad rectangles end here.
-  StatusOr<PlanePoints> points = engine.Points(query->world, query->rect);
+  StatusOr<PlanePoints> points = engine.Points(query->world, query->rect, query->layers);
   if (!points.ok()) return ReportBadArguments("plane", points.status());
   const World& world = query->world;
   // Seams every region side (16 d; a field world's 6 r_max).
   const SvgStyle style{.seam_spacing = arguments.seams ? RegionLayout(world).side() : 0.0,
                        .dot_radius = world.min_distance() / 2};
+  if (world.layers() != nullptr) {
+    // Layered: the layer column, each layer's colour, and disks at half each point's spacing.
+    const std::vector<std::string> names = LayerNames(world);
+    const std::vector<double> radii = LayerRadiiAt(world, points->positions, points->layers,
+                                                   arguments.format == PointFormat::kSvg);
+    WritePoints(std::cout, arguments.format, points->positions, points->ids, radii, query->rect,
+                style, {points->layers, names});
+    return 0;
+  }
   WritePoints(std::cout, arguments.format, points->positions, points->ids,
               RadiiAt(world.radius_field(), points->positions), query->rect, style);
   return 0;

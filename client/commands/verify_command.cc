@@ -13,6 +13,7 @@
 #include "client/commands/commands.h"
 #include "client/options/remote_options.h"
 #include "client/options/world_options.h"
+#include "client/output/point_output.h"
 #include "scallop/plane/world_verifier.h"
 
 namespace scallop::cli {
@@ -40,16 +41,20 @@ struct VerifiedWorld {
   std::string description;
   nlohmann::json json;
   double d = 1.0;
+  std::vector<std::string> layer_names;  // a layered world's, in its layers' order
 };
 
 VerifiedWorld VerifiedWorldOf(const World& world) {
-  return {world.Describe(),
-          {{"seed", world.seed()},
-           {"min_distance", world.min_distance()},
-           {"algorithm", WorldAlgorithmName(world.algorithm())},
-           {"density", world.density()},
-           {"generator_version", world.generator_version()}},
-          world.min_distance()};
+  VerifiedWorld verified{world.Describe(),
+                         {{"seed", world.seed()},
+                          {"min_distance", world.min_distance()},
+                          {"algorithm", WorldAlgorithmName(world.algorithm())},
+                          {"density", world.density()},
+                          {"generator_version", world.generator_version()}},
+                         world.min_distance(),
+                         LayerNames(world)};
+  if (!verified.layer_names.empty()) verified.json["layers"] = verified.layer_names;
+  return verified;
 }
 
 nlohmann::json FieldJson(const FieldVerifyReport& field) {
@@ -60,6 +65,22 @@ nlohmann::json FieldJson(const FieldVerifyReport& field) {
           {"gap_bound", Measured(field.gap_bound)},
           {"points_masked", field.points_masked},
           {"passed", field.passed()}};
+}
+
+// Per layer, by name: its own report (conflicts within it, gaps given the others); and the
+// pairs across layers.
+nlohmann::json LayeredJson(const LayerVerifyReport& layered,
+                           const std::vector<std::string>& names) {
+  nlohmann::json layers = nlohmann::json::object();
+  for (size_t k = 0; k < layered.layers.size(); ++k) {
+    layers[names[k]] = FieldJson(layered.layers[k]);
+    layers[names[k]]["points_checked"] = layered.layers[k].points_checked;
+  }
+  return {{"layers", layers},
+          {"cross_pairs_checked", layered.cross_pairs_checked},
+          {"cross_conflicts", layered.cross_conflicts},
+          {"min_cross_ratio", Measured(layered.min_cross_ratio)},
+          {"passed", layered.passed()}};
 }
 
 void WriteJsonReport(std::ostream& out, const VerifiedWorld& world, const Rect& rect,
@@ -84,6 +105,7 @@ void WriteJsonReport(std::ostream& out, const VerifiedWorld& world, const Rect& 
       {"maximal_ok", report.maximal_ok},
       {"passed", report.passed()}};
   if (report.field) document["field"] = FieldJson(*report.field);
+  if (report.layered) document["layered"] = LayeredJson(*report.layered, world.layer_names);
   out << document.dump() << '\n';
 }
 
@@ -120,6 +142,19 @@ void WriteTextReport(std::ostream& out, const VerifiedWorld& world, const Rect& 
         << "field largest gap          " << field.largest_gap << " at (" << field.largest_gap_spot.x
         << ", " << field.largest_gap_spot.y << "), certified below " << field.gap_bound << '\n'
         << "points in masks            " << field.points_masked << '\n';
+  }
+  if (report.layered) {
+    const LayerVerifyReport& layered = *report.layered;
+    for (size_t k = 0; k < layered.layers.size(); ++k) {
+      const FieldVerifyReport& layer = layered.layers[k];
+      out << "layer " << world.layer_names[k] << ": " << layer.points_checked << " points, "
+          << layer.conflicts << " conflicts (smallest |p-q| / rule " << layer.min_spacing_ratio
+          << "), largest gap given the others " << layer.largest_gap << ", certified below "
+          << layer.gap_bound << ", " << (layer.passed() ? "ok" : "FAILED") << '\n';
+    }
+    out << "pairs across layers        " << layered.cross_pairs_checked << ", "
+        << layered.cross_conflicts << " closer than D (smallest |p-q| / D "
+        << layered.min_cross_ratio << ")\n";
   }
   out << "result                     " << (report.passed() ? "pass" : "FAIL") << '\n';
 }
@@ -181,7 +216,8 @@ int RunRemoteVerify(const VerifyArguments& arguments) {
              {{"seed", message.seed()},
               {"min_distance", message.min_distance()},
               {"raster_name", message.radius_field().raster().raster_name()}},
-             message.min_distance()};
+             message.min_distance(),
+             {}};
   } else {
     return ReportCallFailure("verify", {grpc::StatusCode::INTERNAL, parsed.status().message()});
   }

@@ -26,6 +26,14 @@ void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server
 }
 
 StatusOr<v1::World> RemoteWorld(const WorldArguments& world) {
+  // The World message has no layers yet (issue 19's API part): refuse rather than send a
+  // world without them.
+  if (!world.world_file.empty()) {
+    return InvalidArgument("--world-file: local only for now (no --server)");
+  }
+  if (HasLayers(world.layers)) {
+    return InvalidArgument("--layer: layered worlds are local only for now (no --server)");
+  }
   if (Status status = CheckFieldAlgorithm(world.field, world.algorithm); !status.ok()) {
     return status;
   }

@@ -3,8 +3,11 @@
 #include "client/options/world_options.h"
 
 #include <charconv>
+#include <filesystem>
 
 #include "client/options/rect_option.h"
+#include "raster_catalog.h"
+#include "world_yaml.h"
 
 namespace scallop::cli {
 
@@ -22,6 +25,16 @@ void AddWorldOptions(CLI::App& command, WorldArguments& arguments, bool with_rec
   command.add_option("--density", arguments.density, "r'/2r in (1, 2], a1 and a2 only")
       ->capture_default_str();
   AddFieldOptions(command, arguments.field);
+  AddLayerOptions(command, arguments.layers);
+  CLI::Option* file = command.add_option(
+      "--world-file", arguments.world_file,
+      "The world as YAML: the keys of a named world in scallopd's config (seed, min_distance, "
+      "algorithm, density, radius_field with raster_name a PNG path relative to the file, "
+      "layers, exclusions)");
+  for (const char* option : {"--seed", "--min-distance", "--algorithm", "--density",
+                             "--radius-noise", "--radius-raster", "--layer", "--exclusion"}) {
+    if (CLI::Option* other = command.get_option_no_throw(option)) file->excludes(other);
+  }
   command.add_option("--threads", arguments.threads, "Threads generating regions")
       ->capture_default_str();
   if (with_rect) {
@@ -40,10 +53,36 @@ StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments) {
   StatusOr<PlaneEngineOptions> engine = ParseEngineOptions(arguments);
   if (!engine.ok()) return engine.status();
   query.engine = *engine;
+  StatusOr<LayerMask> layers = ParseLayerFilter(arguments.layers, query.world);
+  if (!layers.ok()) return layers.status();
+  query.layers = *layers;
   return query;
 }
 
+namespace {
+
+// --world-file: the YAML world, each raster_name read as a PNG path relative to the file.
+StatusOr<World> WorldFromFile(const std::string& path) {
+  const std::string where = "--world-file " + path;
+  try {
+    const YAML::Node node = YAML::LoadFile(path);
+    RasterCatalog rasters;
+    for (const std::string& name : RasterNamesInYaml(node)) {
+      if (name.empty() || rasters.Find(name) != nullptr) continue;
+      std::filesystem::path file = name;
+      if (file.is_relative()) file = std::filesystem::path(path).parent_path() / file;
+      if (Status loaded = rasters.Load(name, file.string(), where); !loaded.ok()) return loaded;
+    }
+    return WorldFromYaml(node, rasters, where, /*allow_layers=*/true);
+  } catch (const YAML::Exception& e) {
+    return InvalidArgument(where + ": " + e.what());
+  }
+}
+
+}  // namespace
+
 StatusOr<World> ParseWorld(const WorldArguments& arguments) {
+  if (!arguments.world_file.empty()) return WorldFromFile(arguments.world_file);
   StatusOr<uint64_t> seed = ParseSeed(arguments.seed);
   if (!seed.ok()) return seed.status();
   StatusOr<WorldAlgorithm> algorithm = ParseWorldAlgorithm(arguments.algorithm);
@@ -53,11 +92,17 @@ StatusOr<World> ParseWorld(const WorldArguments& arguments) {
   }
   StatusOr<std::optional<RadiusFieldSpec>> field = ParseLocalField(arguments.field);
   if (!field.ok()) return field.status();
+  StatusOr<std::vector<LayerSpec>> layers = ParseLayers(arguments.layers);
+  if (!layers.ok()) return layers.status();
+  StatusOr<std::vector<LayerExclusionSpec>> exclusions = ParseExclusions(arguments.layers);
+  if (!exclusions.ok()) return exclusions.status();
   return World::Create({.seed = *seed,
                         .min_distance = arguments.min_distance,
                         .algorithm = *algorithm,
                         .density = arguments.density,
-                        .radius_field = std::move(*field)});
+                        .radius_field = std::move(*field),
+                        .layers = std::move(*layers),
+                        .exclusions = std::move(*exclusions)});
 }
 
 StatusOr<uint64_t> ParseSeed(const std::string& text) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "client/options/field_options.h"
+#include "client/options/layer_options.h"
 #include "scallop/base/status.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/plane/plane_engine.h"
@@ -23,7 +24,11 @@ struct WorldArguments {
   double density = 2.0;
   int threads = 2;
   std::string rect;
-  FieldArguments field;  // instead of --min-distance
+  FieldArguments field;   // instead of --min-distance
+  LayerArguments layers;  // instead of both: a layered world
+  // A YAML file holding the whole world, as a named world of scallopd's config
+  // (proto/conversions/world_yaml.h); instead of all the world options above.
+  std::string world_file;
 };
 
 // Adds the world options to `command`, storing into `arguments`, which must
@@ -35,6 +40,8 @@ struct WorldQuery {
   World world;
   Rect rect;
   PlaneEngineOptions engine;
+  // The layers --layers asks for (all for a world without layers).
+  LayerMask layers = kAllLayers;
 };
 
 // Parses the world (ParseWorld), --rect and --threads (ParseEngineOptions)
@@ -44,8 +51,8 @@ struct WorldQuery {
 StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments);
 
 // The world alone (--seed, --min-distance, --algorithm, --density, or a radius
-// field, its raster read from its file), checked: the one way the CLI turns
-// typed options into a World. A field's errors name its option
+// field, its raster read from its file, or layers and exclusions; or --world-file), checked: the
+// one way the CLI turns typed options into a World. A field's errors name its option
 // (ParseLocalField).
 StatusOr<World> ParseWorld(const WorldArguments& arguments);
 

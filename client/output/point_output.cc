@@ -5,23 +5,35 @@
 #include <iomanip>
 #include <nlohmann/json.hpp>
 
+#include "scallop/plane/world_layers.h"
+
 namespace scallop::cli {
 namespace {
 
+// Fill colours of layers 0, 1, ...: distinct at a glance, dark enough on white.
+constexpr const char* kLayerColours[] = {"#1b7837", "#b35806", "#5e3c99", "#2166ac",
+                                         "#b2182b", "#4d4d4d", "#01665e", "#c51b7d"};
+
+const char* LayerColour(size_t layer) {
+  return kLayerColours[layer % (sizeof(kLayerColours) / sizeof(kLayerColours[0]))];
+}
+
 void WriteCsv(std::ostream& out, std::span<const Vec2> points, std::span<const uint64_t> ids,
-              std::span<const double> radii) {
+              std::span<const double> radii, const PointLayers& layers) {
   out << std::setprecision(17);
-  out << CsvHeader(!ids.empty(), !radii.empty());
+  const bool with_layers = !layers.of.empty();
+  out << CsvHeader(!ids.empty(), !radii.empty(), with_layers);
   for (size_t i = 0; i < points.size(); ++i) {
     if (!ids.empty()) out << ids[i] << ',';
     out << points[i].x << ',' << points[i].y;
+    if (with_layers) out << ',' << layers.names[layers.of[i]];
     if (!radii.empty()) out << ',' << radii[i];
     out << '\n';
   }
 }
 
 void WriteJson(std::ostream& out, std::span<const Vec2> points, std::span<const uint64_t> ids,
-               std::span<const double> radii) {
+               std::span<const double> radii, const PointLayers& layers) {
   nlohmann::json xs = nlohmann::json::array(), ys = nlohmann::json::array();
   for (const Vec2& p : points) {
     xs.push_back(p.x);
@@ -30,11 +42,16 @@ void WriteJson(std::ostream& out, std::span<const Vec2> points, std::span<const 
   nlohmann::json document{{"count", points.size()}, {"x", xs}, {"y", ys}};
   if (!ids.empty()) document["id"] = std::vector<uint64_t>(ids.begin(), ids.end());
   if (!radii.empty()) document["r"] = std::vector<double>(radii.begin(), radii.end());
+  if (!layers.of.empty()) {
+    nlohmann::json names = nlohmann::json::array();
+    for (const uint8_t layer : layers.of) names.push_back(layers.names[layer]);
+    document["layer"] = names;
+  }
   out << document.dump() << '\n';
 }
 
 void WriteSvg(std::ostream& out, std::span<const Vec2> points, std::span<const double> radii,
-              const Rect& view, const SvgStyle& style) {
+              const Rect& view, const SvgStyle& style, const PointLayers& layers) {
   // y grows upwards in the world and downwards in SVG: flip with a transform.
   const double stroke = std::max(view.Width(), view.Height()) / 1000.0;
   out << std::setprecision(9);
@@ -58,14 +75,40 @@ void WriteSvg(std::ostream& out, std::span<const Vec2> points, std::span<const d
     }
     out << "</g>\n";
   }
-  out << "<g fill=\"#234\">\n";
-  for (size_t i = 0; i < points.size(); ++i) {
+  const auto circle = [&](size_t i) {
     // A field world's disks are R/2 at each point: where they touch, the spacing is met.
     const double r = radii.empty() ? style.dot_radius : radii[i] / 2;
     out << "<circle cx=\"" << points[i].x << "\" cy=\"" << points[i].y << "\" r=\"" << r
         << "\"/>\n";
+  };
+  if (layers.of.empty()) {
+    out << "<g fill=\"#234\">\n";
+    for (size_t i = 0; i < points.size(); ++i) circle(i);
+    out << "</g>\n";
+  } else {
+    // One group a layer, the largest drawn first (layers are numbered as given; the caller's
+    // points come layer by layer), half transparent so that overlaps show.
+    for (size_t layer = 0; layer < layers.names.size(); ++layer) {
+      out << "<g fill=\"" << LayerColour(layer) << "\" fill-opacity=\"0.6\">\n";
+      for (size_t i = 0; i < points.size(); ++i) {
+        if (layers.of[i] == layer) circle(i);
+      }
+      out << "</g>\n";
+    }
   }
-  out << "</g>\n</g>\n</svg>\n";
+  out << "</g>\n";
+  if (!layers.of.empty()) {
+    // The legend, upright (outside the flipped group), in the top-left corner.
+    const double size = std::max(view.Width(), view.Height()) / 40.0;
+    for (size_t layer = 0; layer < layers.names.size(); ++layer) {
+      const double y = -view.y1 + size * (1.5 * static_cast<double>(layer) + 1.0);
+      out << "<rect x=\"" << view.x0 + size / 2 << "\" y=\"" << y - size * 0.8 << "\" width=\""
+          << size << "\" height=\"" << size << "\" fill=\"" << LayerColour(layer) << "\"/>\n"
+          << "<text x=\"" << view.x0 + size * 2 << "\" y=\"" << y << "\" font-size=\"" << size
+          << "\" font-family=\"sans-serif\">" << layers.names[layer] << "</text>\n";
+    }
+  }
+  out << "</svg>\n";
 }
 
 }  // namespace
@@ -78,8 +121,35 @@ std::vector<double> RadiiAt(const RadiusField* field, std::span<const Vec2> poin
   return radii;
 }
 
-std::string CsvHeader(bool with_ids, bool with_radii) {
-  return std::string(with_ids ? "id," : "") + "x,y" + (with_radii ? ",r" : "") + "\n";
+std::vector<double> LayerRadiiAt(const World& world, std::span<const Vec2> points,
+                                 std::span<const uint8_t> layers, bool for_disks) {
+  std::vector<double> radii;
+  const WorldLayers* world_layers = world.layers();
+  if (world_layers == nullptr) return radii;
+  bool any_field = false;
+  for (int k = 0; k < world_layers->count(); ++k) {
+    // The spec's, not the layer world's: a later layer's world has a constant field.
+    any_field = any_field || world.spec().layers[static_cast<size_t>(k)].radius_field.has_value();
+  }
+  if (!any_field && !for_disks) return radii;
+  radii.reserve(points.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    radii.push_back(world_layers->world(layers[k]).SpacingAt(points[k]));
+  }
+  return radii;
+}
+
+std::vector<std::string> LayerNames(const World& world) {
+  std::vector<std::string> names;
+  if (const WorldLayers* layers = world.layers()) {
+    for (int k = 0; k < layers->count(); ++k) names.push_back(layers->name(k));
+  }
+  return names;
+}
+
+std::string CsvHeader(bool with_ids, bool with_radii, bool with_layers) {
+  return std::string(with_ids ? "id," : "") + "x,y" + (with_layers ? ",layer" : "") +
+         (with_radii ? ",r" : "") + "\n";
 }
 
 const std::vector<std::pair<std::string, PointFormat>>& PointFormatNames() {
@@ -92,16 +162,16 @@ const std::vector<std::pair<std::string, PointFormat>>& PointFormatNames() {
 
 void WritePoints(std::ostream& out, PointFormat format, std::span<const Vec2> points,
                  std::span<const uint64_t> ids, std::span<const double> radii, const Rect& view,
-                 const SvgStyle& style) {
+                 const SvgStyle& style, const PointLayers& layers) {
   switch (format) {
     case PointFormat::kCsv:
-      WriteCsv(out, points, ids, radii);
+      WriteCsv(out, points, ids, radii, layers);
       break;
     case PointFormat::kJson:
-      WriteJson(out, points, ids, radii);
+      WriteJson(out, points, ids, radii, layers);
       break;
     case PointFormat::kSvg:
-      WriteSvg(out, points, radii, view, style);
+      WriteSvg(out, points, radii, view, style, layers);
       break;
     case PointFormat::kNone:
       break;

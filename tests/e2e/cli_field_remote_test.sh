@@ -111,5 +111,8 @@ bad_config "typo in a field" "worlds.w.radius_field.noise: unknown key 'frequenc
   "worlds: {w: {radius_field: {noise: {r_min: 1, r_max: 4, frequence: 1}}}}"
 bad_config "field world on a1" "world.algorithm" \
   "worlds: {w: {algorithm: a1, radius_field: {noise: {r_min: 1, r_max: 2, frequency: 0.01}}}}"
+# Layered worlds are not served yet (the World message has no layers): refused by name.
+bad_config "layered world" "worlds.w: unknown key 'layers'" \
+  "worlds: {w: {layers: [{name: trees, min_distance: 8}]}}"
 
 report cli_field_remote_test

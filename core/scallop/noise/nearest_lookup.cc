@@ -168,6 +168,10 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   if (results.size() != positions.size()) {
     return InvalidArgument("results: must have one entry per position");
   }
+  // A layered world's answer is per layer, each layer a world of its own: not done yet.
+  if (world.layers() != nullptr) {
+    return InvalidArgument("world.layers: Nearest and NoiseGrid do not take layered worlds yet");
+  }
   // ValidatePosition's test inline; the call only to name a bad position.
   const double limit = RegionLayout(world).precision_limit();
   for (size_t k = 0; k < positions.size(); ++k) {

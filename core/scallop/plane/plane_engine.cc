@@ -11,6 +11,8 @@
 
 #include "scallop/plane/point_id.h"
 #include "scallop/plane/query_rect.h"
+#include "scallop/plane/region_exclusions.h"
+#include "scallop/plane/world_layers.h"
 
 namespace scallop {
 
@@ -62,6 +64,20 @@ std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
     }
   }
 
+  // A later layer's regions keep clear of the earlier layers' points: those
+  // layers' regions are resolved first, here on the calling thread, so the
+  // pool never waits on itself and dependencies run down (layer, rank).
+  std::map<RegionKey, std::vector<ExclusionDisk>> exclusions;
+  if (world.earlier_layers() != nullptr) {
+    std::vector<RegionKey> keys;
+    for (const std::set<RegionKey>& rank : to_generate)
+      keys.insert(keys.end(), rank.begin(), rank.end());
+    exclusions = RegionExclusions(
+        world, keys, [this](const World& layer, const std::vector<RegionKey>& layer_keys) {
+          return Resolve(layer, layer_keys);
+        });
+  }
+
   // Rank by rank: a region depends only on lower ranks, so once those are in
   // `resolved` (ours generated, others' awaited) the rank's regions are
   // independent and generate in parallel. Others' work of the same rank is
@@ -75,8 +91,10 @@ std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
       for (const RegionKey& dependency : LowerRankedNeighbours(mine[n])) {
         neighbours.push_back(resolved.at(dependency).get());
       }
-      auto region =
-          std::make_shared<const RegionPoints>(GenerateRegion(world, mine[n], neighbours));
+      const auto disks = exclusions.find(mine[n]);
+      auto region = std::make_shared<const RegionPoints>(GenerateRegion(
+          world, mine[n], neighbours,
+          disks == exclusions.end() ? std::span<const ExclusionDisk>{} : disks->second));
       cache_.Publish(world, mine[n], region);
       generated[n] = std::move(region);
     };
@@ -102,13 +120,24 @@ std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
   return result;
 }
 
+namespace {
+
+Status NoRegionsOfItsOwn() {
+  return InvalidArgument(
+      "world: a layered world has no regions of its own; ask its layers' worlds");
+}
+
+}  // namespace
+
 StatusOr<std::vector<RegionHandle>> PlaneEngine::Regions(const World& world, const Rect& rect) {
+  if (world.layers() != nullptr) return NoRegionsOfItsOwn();
   if (Status status = ValidateQuery(world, rect); !status.ok()) return status;
   return Resolve(world, RegionsOverlapping(world, rect));
 }
 
 std::optional<std::vector<RegionHandle>> PlaneEngine::CachedRegions(const World& world,
                                                                     const Rect& rect) {
+  if (world.layers() != nullptr) return std::nullopt;
   std::vector<RegionHandle> regions;
   for (const RegionKey& key : RegionsOverlapping(world, rect)) {
     RegionHandle region = cache_.Peek(world, key);
@@ -118,7 +147,21 @@ std::optional<std::vector<RegionHandle>> PlaneEngine::CachedRegions(const World&
   return regions;
 }
 
-StatusOr<PlanePoints> PlaneEngine::Points(const World& world, const Rect& rect) {
+StatusOr<PlanePoints> PlaneEngine::Points(const World& world, const Rect& rect, LayerMask layers) {
+  if (const WorldLayers* world_layers = world.layers()) {
+    if (Status status = ValidateQuery(world, rect); !status.ok()) return status;
+    PlanePoints result;
+    for (int k = 0; k < world_layers->count(); ++k) {
+      if (((layers >> k) & 1) == 0) continue;
+      StatusOr<PlanePoints> layer = Points(world_layers->world(k), rect);
+      if (!layer.ok()) return layer.status();
+      result.positions.insert(result.positions.end(), layer->positions.begin(),
+                              layer->positions.end());
+      result.ids.insert(result.ids.end(), layer->ids.begin(), layer->ids.end());
+      result.layers.resize(result.positions.size(), static_cast<uint8_t>(k));
+    }
+    return result;
+  }
   StatusOr<std::vector<RegionHandle>> regions = Regions(world, rect);
   if (!regions.ok()) return regions.status();
   size_t upper_bound = 0;
@@ -136,6 +179,15 @@ StatusOr<PlanePoints> PlaneEngine::Points(const World& world, const Rect& rect) 
 
 StatusOr<int64_t> PlaneEngine::Count(const World& world, const Rect& rect) {
   if (Status status = ValidateQuery(world, rect); !status.ok()) return status;
+  if (const WorldLayers* layers = world.layers()) {
+    int64_t count = 0;
+    for (int k = 0; k < layers->count(); ++k) {
+      StatusOr<int64_t> layer = Count(layers->world(k), rect);
+      if (!layer.ok()) return layer.status();
+      count += *layer;
+    }
+    return count;
+  }
   int64_t count = 0;
   for (const RegionHandle& region : Resolve(world, RegionsOverlapping(world, rect))) {
     count += std::count_if(region->points.begin(), region->points.end(),
@@ -145,6 +197,7 @@ StatusOr<int64_t> PlaneEngine::Count(const World& world, const Rect& rect) {
 }
 
 StatusOr<RegionHandle> PlaneEngine::Region(const World& world, RegionKey key) {
+  if (world.layers() != nullptr) return NoRegionsOfItsOwn();
   // Checked on the key, because the rectangle of an extreme key would overflow.
   const int64_t n = RegionLayout(world).regions_per_half_axis();
   if (key.i < -n || key.i >= n || key.j < -n || key.j >= n) {

@@ -35,10 +35,19 @@ struct PlaneEngineOptions {
 
 // Points of a query, in a deterministic order: regions by row (j), then
 // column (i), ascending; within a region, by point index (point_id.h).
+// A layered world's points come layer by layer, in the layers' order (world_layers.h), each
+// layer's in that order; a point is named by its layer and its id, which is its id in the
+// layer's own world.
 struct PlanePoints {
   std::vector<Vec2> positions;
   std::vector<uint64_t> ids;  // ids[k] is the id of positions[k] (point_id.h)
+  // A layered world's: layers[k] is the layer of positions[k]. Empty for other worlds.
+  std::vector<uint8_t> layers;
 };
+
+// A set of a layered world's layers, bit k for layer k.
+using LayerMask = uint32_t;
+inline constexpr LayerMask kAllLayers = ~LayerMask{0};
 
 class PlaneEngine {
  public:
@@ -54,22 +63,29 @@ class PlaneEngine {
   // INVALID_ARGUMENT for a non-finite, empty or inverted rectangle, one larger
   // than max_query_area d^2 or crossing more than max_query_area / 64 + 16
   // regions; OUT_OF_RANGE for a corner beyond 2^32 d.
-  StatusOr<PlanePoints> Points(const World& world, const Rect& rect);
+  // A layered world: the layers in `layers` (bits beyond its count are
+  // ignored), each layer a query of its own world, which generates the
+  // earlier layers' regions its regions keep clear of (RegionExclusions).
+  StatusOr<PlanePoints> Points(const World& world, const Rect& rect, LayerMask layers = kAllLayers);
 
   // The regions a query of the rectangle reads, in query order (rows, then
   // columns), shared: what Points copies from, for callers that copy the
   // points straight into their own form with VisitPoints. Same cost and errors.
+  // A layered world has no regions of its own (INVALID_ARGUMENT naming
+  // "world"): ask its layers' worlds.
   StatusOr<std::vector<RegionHandle>> Regions(const World& world, const Rect& rect);
 
   // The same regions if every one is cached now, else nullopt, having
   // generated and waited on nothing: for a server answering warm queries on
-  // its network thread. REQUIRES: ValidateQuery(world, rect) is ok.
+  // its network thread. REQUIRES: ValidateQuery(world, rect) is ok. nullopt
+  // for a layered world.
   std::optional<std::vector<RegionHandle>> CachedRegions(const World& world, const Rect& rect);
 
   // How many of the world's points lie in the rectangle. Same cost and errors.
   StatusOr<int64_t> Count(const World& world, const Rect& rect);
 
-  // One whole region, shared (no copy). OUT_OF_RANGE beyond the precision range.
+  // One whole region, shared (no copy). OUT_OF_RANGE beyond the precision
+  // range; INVALID_ARGUMENT for a layered world (ask its layers' worlds).
   StatusOr<RegionHandle> Region(const World& world, RegionKey key);
 
   // The checks Points applies (CheckQueryRect under max_query_area), for

@@ -103,8 +103,13 @@ std::vector<Vec2> SampleConstant(const World& world, const SamplingProblem& prob
 
 }  // namespace
 
+Rect SampledRect(const World& world, RegionKey key) {
+  return Grown(RegionLayout(world).RegionRect(key), SamplingMargin(world));
+}
+
 RegionPoints GenerateRegion(const World& world, RegionKey key,
-                            std::span<const RegionPoints* const> lower_neighbours) {
+                            std::span<const RegionPoints* const> lower_neighbours,
+                            std::span<const ExclusionDisk> exclusions) {
   const RegionLayout layout(world);
   const double d = world.min_distance();
   const Rect rect = layout.RegionRect(key);
@@ -128,6 +133,7 @@ RegionPoints GenerateRegion(const World& world, RegionKey key,
   problem.stop_when_covered = rect;
   problem.seed_area =
       Grown(Rect{centre.x, centre.y, centre.x, centre.y}, world.SpacingAt(centre) / 2);
+  problem.exclusions = exclusions;
   Rng rng(
       HashWords({world.fingerprint(), static_cast<uint64_t>(key.i), static_cast<uint64_t>(key.j)}));
   std::vector<Vec2> placed;

@@ -9,6 +9,7 @@
 #include "scallop/geometry/vec2.h"
 #include "scallop/plane/region_layout.h"
 #include "scallop/plane/world.h"
+#include "scallop/sampling/sampling_problem.h"
 
 namespace scallop {
 
@@ -81,7 +82,15 @@ std::vector<RegionKey> LowerRankedNeighbours(RegionKey key);
 // A3 on average (a rank-0 region places more, a rank-3 region fewer); a
 // field world's region holds up to 0.86 (6 r_max / R)^2 points where the
 // field is near R.
+// The world of a layer generated after others (World::earlier_layers()) is a
+// field world that also keeps clear of `exclusions`: every point of the earlier
+// layers strictly within D of the sampled rectangle, with D as its radius
+// (RegionExclusions), which the sampler treats as masked.
 RegionPoints GenerateRegion(const World& world, RegionKey key,
-                            std::span<const RegionPoints* const> lower_neighbours);
+                            std::span<const RegionPoints* const> lower_neighbours,
+                            std::span<const ExclusionDisk> exclusions = {});
+
+// The rectangle a region of `world` samples: its own grown by SamplingMargin.
+Rect SampledRect(const World& world, RegionKey key);
 
 }  // namespace scallop

@@ -10,6 +10,7 @@
 
 #include "scallop/base/number_text.h"
 #include "scallop/base/precision_range.h"
+#include "scallop/plane/world_layers.h"
 #include "scallop/random/rng.h"
 
 namespace scallop {
@@ -103,6 +104,11 @@ World::World(const WorldSpec& spec, std::shared_ptr<const RadiusField> field)
     : spec_(spec), field_(std::move(field)), fingerprint_(Fingerprint(spec_, field_.get())) {}
 
 StatusOr<World> World::Create(const WorldSpec& spec) {
+  if (!spec.layers.empty() || !spec.exclusions.empty()) return WorldLayers::Create(spec);
+  return CreatePlain(spec);
+}
+
+StatusOr<World> World::CreatePlain(const WorldSpec& spec) {
   WorldSpec canonical = spec;
   std::shared_ptr<const RadiusField> field;
   if (spec.radius_field.has_value()) {
@@ -132,10 +138,17 @@ StatusOr<World> World::Create(const WorldSpec& spec) {
 World World::WithSeed(uint64_t seed) const {
   WorldSpec spec = spec_;
   spec.seed = seed;
+  // A valid layered spec stays valid with any seed.
+  if (layers_ != nullptr) return *WorldLayers::Create(spec);
   return World(spec, field_);
 }
 
 bool operator==(const World& a, const World& b) {
+  if ((a.layers_ == nullptr) != (b.layers_ == nullptr) ||
+      (a.earlier_ == nullptr) != (b.earlier_ == nullptr)) {
+    return false;
+  }
+  if (a.layers_ != nullptr || a.earlier_ != nullptr) return a.fingerprint_ == b.fingerprint_;
   const WorldSpec& x = a.spec_;
   const WorldSpec& y = b.spec_;
   if (x.seed != y.seed || x.min_distance != y.min_distance || x.algorithm != y.algorithm ||
@@ -148,6 +161,34 @@ bool operator==(const World& a, const World& b) {
 
 std::string World::Describe() const {
   std::ostringstream out;
+  if (layers_ != nullptr) {
+    out << "seed=" << seed() << " algorithm=" << WorldAlgorithmName(algorithm());
+    if (UsesDensity(algorithm())) out << " density=" << NumberText(density());
+    out << " version=" << generator_version() << " layers=[";
+    for (int k = 0; k < layers_->count(); ++k) {
+      // The canonical spec's spacing: a later layer's world has a constant field.
+      const LayerSpec& layer = spec_.layers[static_cast<size_t>(k)];
+      out << (k > 0 ? " " : "") << layer.name << ":";
+      if (!layer.radius_field.has_value()) {
+        out << "d=" << NumberText(layer.min_distance);
+      } else {
+        out << "field=" << RadiusFieldKindName(layer.radius_field->kind) << " r=["
+            << NumberText(layer.radius_field->r_min) << "," << NumberText(layer.radius_field->r_max)
+            << "]";
+      }
+    }
+    out << "] exclusions=[";
+    bool first = true;
+    for (int a = 0; a < layers_->count(); ++a) {
+      for (int b = a + 1; b < layers_->count(); ++b) {
+        out << (first ? "" : " ") << layers_->name(a) << "," << layers_->name(b) << "="
+            << NumberText(layers_->exclusion(a, b));
+        first = false;
+      }
+    }
+    out << "] layers_hash=" << std::hex << fingerprint_ << std::dec;
+    return out.str();
+  }
   out << "seed=" << seed() << " d=" << NumberText(min_distance())
       << " algorithm=" << WorldAlgorithmName(algorithm());
   if (UsesDensity(algorithm())) out << " density=" << NumberText(density());

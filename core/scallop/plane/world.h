@@ -9,10 +9,12 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "scallop/base/status.h"
 #include "scallop/field/radius_field.h"
 #include "scallop/geometry/vec2.h"
+#include "scallop/plane/layer_spec.h"
 #include "scallop/sampling/sampler.h"
 
 namespace scallop {
@@ -50,7 +52,15 @@ struct WorldSpec {
   // fingerprints are unchanged). Present: min_distance is ignored and normalised to r_min; a
   // constant field is the plain world with min_distance = r.
   std::optional<RadiusFieldSpec> radius_field = std::nullopt;
+  // Layers (issue 19; docs/design.md, "Layers"): empty for a world of one kind of point, as
+  // every world before layers. Given, each layer has its own spacing (min_distance and
+  // radius_field above are then ignored), and `exclusions` the distances kept between layers.
+  std::vector<LayerSpec> layers = {};
+  std::vector<LayerExclusionSpec> exclusions = {};
 };
+
+class WorldLayers;
+struct EarlierLayers;
 
 // A valid world in canonical form: the only way to get one is Create (or the
 // default, seed 0, d 1, A3), so every World the core receives is valid.
@@ -71,6 +81,10 @@ class World {
   // ("world.algorithm": only A3's growth takes a field). A constant field is
   // normalised to the plain world with d = r, whose points it has; for other
   // fields min_distance is normalised to r_min. Cost: a raster's O(pixels).
+  // Layers are checked by WorldLayers' rules (world_layers.h): their count, names, spacings
+  // (errors named world.layers[k]....) and exclusions (world.exclusions[n]....); a layered
+  // world's min_distance is normalised to the smallest r_min of its layers (the rectangle
+  // rule's unit), and it may not have a radius_field of its own.
   static StatusOr<World> Create(const WorldSpec& spec);
 
   const WorldSpec& spec() const { return spec_; }
@@ -89,14 +103,25 @@ class World {
   // sizes and neighbour reaches scale with it.
   double max_spacing() const { return field_ ? field_->r_max() : spec_.min_distance; }
 
+  // A layered world's layers (each a World of its own, the order they are generated in, the
+  // exclusion matrix); null for a world of one kind. The points of a layered world are its
+  // layers' points: query those worlds (PlaneEngine does).
+  const WorldLayers* layers() const { return layers_.get(); }
+  // For the world of a layer generated after others: those layers' worlds and the distance
+  // this layer keeps from each; null for every other world. Its regions read those layers.
+  const EarlierLayers* earlier_layers() const { return earlier_.get(); }
+
   // The same world with another seed: every seed is valid, so no check. For
   // series of unrelated worlds alike in everything else.
+  // A layered world gets new seeds for all its layers. REQUIRES: not a layer's world
+  // (earlier_layers() null).
   World WithSeed(uint64_t seed) const;
 
   // A 64-bit digest of the canonical world, for seeds and cache keys:
   // HashWords({seed, bits(d), algorithm, bits(density), generator_version}),
   // and for a field world HashWords({..., generator_version, field.Fingerprint()})
-  // with d = r_min (so a raster's pixels enter, never its address).
+  // with d = r_min (so a raster's pixels enter, never its address). A layered world and a
+  // later layer's world hash more (world_layers.h); the first layer's world is a plain world.
   uint64_t fingerprint() const { return fingerprint_; }
 
   // "seed=7 d=1 algorithm=a3 version=3", for logs and errors; a field world
@@ -106,15 +131,23 @@ class World {
   std::string Describe() const;
 
   // Equal parameters; fields compare by their fingerprints (a raster by its
-  // pixels' hash, not by which copy of the image it holds).
+  // pixels' hash, not by which copy of the image it holds), layered worlds and
+  // layers' worlds by theirs.
   friend bool operator==(const World& a, const World& b);
 
  private:
+  friend class WorldLayers;
+
   // REQUIRES: spec valid and canonical; field built from spec.radius_field.
   World(const WorldSpec& spec, std::shared_ptr<const RadiusField> field);
 
+  // Create for a world without layers: its checks and normal form.
+  static StatusOr<World> CreatePlain(const WorldSpec& spec);
+
   WorldSpec spec_;
   std::shared_ptr<const RadiusField> field_;
+  std::shared_ptr<const WorldLayers> layers_;
+  std::shared_ptr<const EarlierLayers> earlier_;
   uint64_t fingerprint_;
 };
 

@@ -23,7 +23,10 @@ double MaximalityTolerance(double min_distance, double max_abs);
 // reads is the rectangle grown by a 2 d halo (2 r_max for a field world), so
 // the rectangle rule (query_rect.h) applies to both: `rect`'s bounds, then
 // the grown rectangle's bounds (OUT_OF_RANGE within 2 d of the limit) and its
-// cost under `limit`, named "rect+halo" in messages.
+// cost under `limit`, named "rect+halo" in messages. A layered world is judged
+// by the layered verifier (VerifyLayeredWindow: every pair under the exclusion
+// matrix, each layer maximal given the others), its report in
+// VerifyReport::layered, with a halo of max(2 largest spacing, largest D).
 // REQUIRES: the engine's max_query_area >= limit.max_area.
 // With `inside`, also the world's points in `rect`, in query order, for
 // callers that go on to measure them (scallop analyze).

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "scallop/field/field_evaluator.h"
@@ -32,13 +33,21 @@ class FieldRun {
         tries_(curve_tries),
         slope_(field.Slope()),
         stats_(stats),
-        problem_(problem) {
+        problem_(problem),
+        exclusions_(ExclusionArea(domain, problem), ExclusionCell(field, problem)) {
     const double m =
         std::max({std::abs(rect_.x0), std::abs(rect_.x1), std::abs(rect_.y0), std::abs(rect_.y1)}) +
         field.r_max();
     pad_absolute_ = 8.0 * (std::nextafter(m, INFINITY) - m);
     reach_factor_ = (1.0 / (1.0 - slope_)) * (1.0 + 1e-9);
     if (problem != nullptr && problem->stop_when_covered) stop_ = *problem->stop_when_covered;
+    if (problem != nullptr) {
+      for (const ExclusionDisk& disk : problem->exclusions) {
+        if (!(disk.radius > 0.0)) continue;  // a distance of 0 excludes nothing
+        exclusions_.Add(disk.centre, disk.radius);
+        largest_exclusion_ = std::max(largest_exclusion_, disk.radius);
+      }
+    }
   }
 
   std::vector<Vec2> Run() {
@@ -101,6 +110,73 @@ class FieldRun {
     return std::sqrt(field.r_min() * field.r_max());
   }
 
+  // The exclusion disks are filed like points, over the domain grown by the largest of them,
+  // in cells no smaller than that radius (a disk test then scans at most 4 cells) nor than the
+  // points' cells (so that tiny distances do not make a huge grid).
+  static double LargestExclusion(const SamplingProblem* problem) {
+    double largest = 0.0;
+    if (problem != nullptr) {
+      for (const ExclusionDisk& disk : problem->exclusions)
+        largest = std::max(largest, disk.radius);
+    }
+    return largest;
+  }
+  static Rect ExclusionArea(const Rect& domain, const SamplingProblem* problem) {
+    return Grown(domain, LargestExclusion(problem));
+  }
+  static double ExclusionCell(const RadiusField& field, const SamplingProblem* problem) {
+    return std::max(LargestExclusion(problem), GridCell(field));
+  }
+
+  // True when x lies strictly inside an exclusion disk (dx^2 + dy^2 < D^2 in doubles).
+  bool Excluded(Vec2 x) const {
+    if (largest_exclusion_ == 0.0) return false;
+    return exclusions_.AnyNear(Grown(Rect{x.x, x.y, x.x, x.y}, largest_exclusion_),
+                               [&](const FieldPoint& c) {
+                                 const double dx = x.x - c.p.x;
+                                 const double dy = x.y - c.p.y;
+                                 return dx * dx + dy * dy < c.r * c.r;
+                               });
+  }
+
+  // True when one exclusion disk holds the whole closed cell: its farthest corner is closer
+  // than the disk's radius, with the coverage test's 1e-9 relative margin for rounding.
+  bool InOneExclusion(const Rect& c) const {
+    if (largest_exclusion_ == 0.0) return false;
+    const Vec2 centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1)};
+    return exclusions_.AnyNear(
+        Grown(Rect{centre.x, centre.y, centre.x, centre.y}, largest_exclusion_),
+        [&](const FieldPoint& e) {
+          const double dx = std::max(e.p.x - c.x0, c.x1 - e.p.x);
+          const double dy = std::max(e.p.y - c.y0, c.y1 - e.p.y);
+          return (dx * dx + dy * dy) * (1.0 + 1e-9) < e.r * e.r;
+        });
+  }
+
+  // A cell that no single disk holds, but that the points' conflict disks and the exclusion
+  // disks hold together (along an exclusion's edge, say): certified when
+  // H(centre) + (1 + L) half-diagonal < 0, with H(x) = min(G(x), E(x)), G as in the verifier
+  // and E(x) = min_c |x - c| - D_c. Both have slope <= 1 + L, so H < 0 on the whole cell. H
+  // is taken over the points and disks within r_max (or the largest D) of the centre: fewer
+  // can only raise it, which keeps the certificate sound.
+  bool CoveredOrExcludedByBound(const Rect& c) {
+    const Vec2 centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1)};
+    const double half_diagonal = 0.5 * std::sqrt(c.Width() * c.Width() + c.Height() * c.Height());
+    const double rx = Radius(centre);
+    double h = std::numeric_limits<double>::infinity();
+    const Rect near = Grown(Rect{centre.x, centre.y, centre.x, centre.y}, field_.r_max());
+    grid_.AnyNear(near, [&](const FieldPoint& q) {
+      h = std::min(h, std::sqrt(SquaredDistance(centre, q.p)) - std::max(rx, q.r));
+      return false;
+    });
+    exclusions_.AnyNear(Grown(Rect{centre.x, centre.y, centre.x, centre.y}, largest_exclusion_),
+                        [&](const FieldPoint& e) {
+                          h = std::min(h, std::sqrt(SquaredDistance(centre, e.p)) - e.r);
+                          return false;
+                        });
+    return h + (1.0 + slope_) * half_diagonal * (1.0 + 1e-9) + 1e-12 * field_.r_max() < 0.0;
+  }
+
   // The radius, padded so that a point placed at it from p stays at least R apart in doubles
   // after its coordinates are rounded (as SpacingFor does for a constant d).
   double Pad(double t) const { return t * (1.0 + 0x1.0p-32) + pad_absolute_; }
@@ -117,7 +193,7 @@ class FieldRun {
   // Where a new point may go: the domain, outside masks and the problem's closed rectangles.
   bool Open(Vec2 x) const {
     return rect_.Contains(x) && !field_.IsMasked(x) &&
-           (problem_ == nullptr || !InCoveredRect(*problem_, x));
+           (problem_ == nullptr || !InCoveredRect(*problem_, x)) && !Excluded(x);
   }
 
   bool Admissible(Vec2 x, double rx) const { return Open(x) && !Conflicts(x, rx); }
@@ -151,9 +227,11 @@ class FieldRun {
   bool SegmentInOneDisk(const FieldPoint& p, Vec2 u, double t_lo, double t_hi) const {
     const Vec2 a{p.p.x + t_lo * u.x, p.p.y + t_lo * u.y};
     const Vec2 b{p.p.x + t_hi * u.x, p.p.y + t_hi * u.y};
-    for (const FieldPoint& q : near_) {
-      const double r2 = q.r * q.r;
-      if (SquaredDistance(a, q.p) < r2 && SquaredDistance(b, q.p) < r2) return true;
+    for (const std::vector<FieldPoint>* disks : {&near_, &near_exclusions_}) {
+      for (const FieldPoint& q : *disks) {
+        const double r2 = q.r * q.r;
+        if (SquaredDistance(a, q.p) < r2 && SquaredDistance(b, q.p) < r2) return true;
+      }
     }
     return false;
   }
@@ -175,6 +253,18 @@ class FieldRun {
       if (SquaredDistance(p.p, q.p) < m * m) near_.push_back(q);
       return false;
     });
+    // The exclusion disks that meet the curve's reach: a try inside one is skipped unevaluated.
+    near_exclusions_.clear();
+    if (largest_exclusion_ == 0.0) return;
+    exclusions_.AnyNear(Grown(Rect{p.p.x, p.p.y, p.p.x, p.p.y}, spot_limit_ + largest_exclusion_),
+                        [&](const FieldPoint& e) {
+                          // 1e-9 more: a disk that holds a spot within spot_limit_ of p must be
+                          // listed whatever the rounding of these sums.
+                          const double reach = (spot_limit_ + e.r) * (1.0 + 1e-9);
+                          if (SquaredDistance(p.p, e.p) < reach * reach)
+                            near_exclusions_.push_back(e);
+                          return false;
+                        });
   }
 
   // Admissible against the gathered points when the spot is within the gathered range (always,
@@ -183,7 +273,17 @@ class FieldRun {
     if (!(rx <= spot_limit_ && SquaredDistance(p.p, x) <= spot_limit_ * spot_limit_)) {
       return Admissible(x, rx);
     }
-    if (!Open(x)) return false;
+    // Open(x), with the exclusion disks from the gathered list: it holds every disk that can
+    // hold a spot within spot_limit_ of p.
+    if (!rect_.Contains(x) || field_.IsMasked(x) ||
+        (problem_ != nullptr && InCoveredRect(*problem_, x))) {
+      return false;
+    }
+    for (const FieldPoint& e : near_exclusions_) {
+      const double dx = x.x - e.p.x;
+      const double dy = x.y - e.p.y;
+      if (dx * dx + dy * dy < e.r * e.r) return false;
+    }
     for (const FieldPoint& q : near_) {
       const double dx = x.x - q.p.x;
       const double dy = x.y - q.p.y;
@@ -291,6 +391,7 @@ class FieldRun {
   void Certify(const Rect& c, int depth) {
     for (;;) {
       if (field_.HasMask() && field_.AllMasked(c)) return;
+      if (InOneExclusion(c)) return;
       if (stats_ != nullptr) ++stats_->cells_tested;
       if (stats_ != nullptr) ++stats_->evaluations;
       const RadiusInterval bounds = evaluator_.Bounds(c);
@@ -303,12 +404,14 @@ class FieldRun {
         break;
       }
       if (CoveredByOnePoint(c, bounds.lo, bounds.hi)) return;
+      if (largest_exclusion_ > 0.0 && CoveredOrExcludedByBound(c)) return;
       const Vec2 centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1)};
       if (depth >= max_depth_) {
         // Finest cell: its centre and quarter points, all inside it (a leaf's inside is wholly
         // unmasked or wholly masked, since partly masked cells were cut at pixel lines). Once
-        // each is covered, every spot of the cell is within its diagonal of a covered one, and
-        // G(x) = min_q |x - q| - max(R(x), R(q)) has slope <= 1 + L: G <= (1 + L) diagonal.
+        // each is covered (or excluded), every spot of the cell is within its diagonal of such a
+        // spot, and G(x) = min_q |x - q| - max(R(x), R(q)), or with exclusions min(G, E), has
+        // slope <= 1 + L: G <= (1 + L) diagonal.
         if (stats_ != nullptr) ++stats_->leaves;
         const double qx0 = c.x0 + 0.25 * (c.x1 - c.x0);
         const double qx1 = c.x0 + 0.75 * (c.x1 - c.x0);
@@ -372,6 +475,9 @@ class FieldRun {
   double slope_;
   FieldSampleStats* stats_;
   const SamplingProblem* problem_;
+  // The problem's exclusion disks (radius in FieldPoint::r), and the largest radius (0: none).
+  FieldPointGrid exclusions_;
+  double largest_exclusion_ = 0.0;
   std::optional<Rect> stop_;
   double pad_absolute_ = 0.0;
   double reach_factor_ = 1.0;
@@ -383,6 +489,7 @@ class FieldRun {
   std::vector<int32_t> beyond_stop_;
   // The current candidate's neighbours (GatherNear) and how far its curve's spots reach.
   std::vector<FieldPoint> near_;
+  std::vector<FieldPoint> near_exclusions_;
   double spot_limit_ = 0.0;
   // The point that last covered a sweep cell: the next cell, a neighbour, is often covered by
   // it, and a spot there in conflict with it. Any point of the run answers either question

@@ -15,6 +15,14 @@
 
 namespace scallop {
 
+// A disk no new point may enter: a point of an earlier layer of a layered world and the
+// distance D the layer being sampled keeps from it (docs/design.md, "Layers"). A spot x is
+// excluded when dx^2 + dy^2 < radius^2 in doubles, the verifier's expression.
+struct ExclusionDisk {
+  Vec2 centre;
+  double radius = 0.0;
+};
+
 struct SamplingProblem {
   Domain domain;
   double min_distance = 1.0;
@@ -42,6 +50,9 @@ struct SamplingProblem {
   // When set (inside the domain), where the first point is drawn from if no
   // fixed point seeds the domain.
   std::optional<Rect> seed_area;
+  // Field runs only (SampleFieldProblem): disks no new point may enter, and whose spots need no
+  // cover (they count as masked): the earlier layers of a layered world. Any order.
+  std::span<const ExclusionDisk> exclusions;
 };
 
 // True when `p` may not be a new point because a covered rectangle holds it.
@@ -56,7 +67,8 @@ inline bool InCoveredRect(const SamplingProblem& problem, Vec2 p) {
 inline double MaxAbsCoordinate(const SamplingProblem& problem, double margin) {
   const Rect& r = problem.domain.rect;
   return std::max(std::max(std::abs(r.x0), std::abs(r.x1)),
-                  std::max(std::abs(r.y0), std::abs(r.y1))) + margin;
+                  std::max(std::abs(r.y0), std::abs(r.y1))) +
+         margin;
 }
 
 // True when no fixed point lies within `reach` of the domain, so a sampler

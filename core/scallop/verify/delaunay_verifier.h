@@ -14,6 +14,7 @@
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
 #include "scallop/verify/field_verifier.h"
+#include "scallop/verify/layer_verifier.h"
 
 namespace scallop {
 
@@ -71,8 +72,13 @@ struct VerifyReport {
   // its pair of least |p - q| / max(R(p), R(q)), largest_empty_centre its largest gap's spot.
   // largest_empty_circle and the seam statistics stay unset: they are the constant rule's.
   std::optional<FieldVerifyReport> field;
+  // A layered world's window: the layered verifier's report (layer_verifier.h), whose verdicts
+  // spacing_ok (no conflict within a layer or across layers) and maximal_ok (every layer
+  // maximal given the others) repeat; spacing_violations counts both kinds of conflict.
+  std::optional<LayerVerifyReport> layered;
   bool passed() const {
-    return spacing_ok && maximal_ok && points_outside == 0 && (!field || field->passed());
+    return spacing_ok && maximal_ok && points_outside == 0 && (!field || field->passed()) &&
+           (!layered || layered->passed());
   }
 };
 

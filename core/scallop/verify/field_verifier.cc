@@ -34,9 +34,11 @@ class StopPoll {
 
 class GapSearch {
  public:
-  GapSearch(const FieldPointGrid& grid, const RadiusField& field, double tolerance,
-            FieldVerifyReport* report, StopPoll& poll)
+  GapSearch(const FieldPointGrid& grid, const FieldPointGrid& exclusions, double largest_exclusion,
+            const RadiusField& field, double tolerance, FieldVerifyReport* report, StopPoll& poll)
       : grid_(grid),
+        exclusions_(exclusions),
+        largest_exclusion_(largest_exclusion),
         field_(field),
         report_(report),
         poll_(poll),
@@ -51,6 +53,13 @@ class GapSearch {
       g = std::min(g, d - std::max(rx, q.r));
       return false;
     });
+    if (largest_exclusion_ > 0.0) {
+      exclusions_.AnyNear(Grown(Rect{x.x, x.y, x.x, x.y}, largest_exclusion_),
+                          [&](const FieldPoint& c) {
+                            g = std::min(g, std::sqrt(SquaredDistance(x, c.p)) - c.r);
+                            return false;
+                          });
+    }
     return g;
   }
 
@@ -98,6 +107,8 @@ class GapSearch {
 
  private:
   const FieldPointGrid& grid_;
+  const FieldPointGrid& exclusions_;
+  double largest_exclusion_;
   const RadiusField& field_;
   FieldVerifyReport* report_;
   StopPoll& poll_;
@@ -170,10 +181,21 @@ StatusOr<FieldVerifyReport> Verify(std::span<const Vec2> points, const Rect& are
     });
   }
   report.conflict_ok = report.conflicts == 0;
-  if (points.empty()) {
+  double largest_exclusion = 0.0;
+  for (const ExclusionDisk& c : options.exclusions) {
+    if (!std::isfinite(c.centre.x) || !std::isfinite(c.centre.y) || !std::isfinite(c.radius) ||
+        c.radius < 0.0) {
+      return InvalidArgument("exclusions must be finite disks with radius >= 0");
+    }
+    largest_exclusion = std::max(largest_exclusion, c.radius);
+  }
+  FieldPointGrid exclusions(Grown(domain, largest_exclusion), std::max(largest_exclusion, r_max));
+  for (const ExclusionDisk& c : options.exclusions) exclusions.Add(c.centre, c.radius);
+  if (points.empty() && options.exclusions.empty()) {
     report.largest_gap = report.gap_bound = std::numeric_limits<double>::infinity();
   } else {
-    GapSearch search(grid, field, options.max_tolerance, &report, poll);
+    GapSearch search(grid, exclusions, largest_exclusion, field, options.max_tolerance, &report,
+                     poll);
     const double base = 0.5 * r_max;
     const double finest = field.r_min() * 0x1.0p-32;
     ForEachTile(domain, base, [&](const Rect& tile) { search.Judge(tile, finest); });

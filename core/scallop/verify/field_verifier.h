@@ -12,6 +12,7 @@
 #include "scallop/field/radius_field.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
+#include "scallop/sampling/sampling_problem.h"
 
 namespace scallop {
 
@@ -24,6 +25,12 @@ struct FieldVerifyOptions {
   // verifier polls VerifyOptions::stop: once it returns true the verifier stops and returns
   // CANCELLED (its caller has gone).
   std::function<bool()> stop;
+  // Disks whose spots need no cover, as masked pixels need none: for a layer of a layered world,
+  // the other layers' points with the distance D kept from each (docs/design.md, "Layers"). G
+  // becomes min(G, E) with E(x) = min_c |x - c| - D_c, which has slope 1. Disks within 2 r_max
+  // plus the largest D of the domain must be given. The points are not checked against them
+  // (the layered verifier counts cross-layer pairs itself).
+  std::span<const ExclusionDisk> exclusions;
 };
 
 struct FieldVerifyReport {
