@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "follow_client.h"
+#include "tests/e2e/metrics_scrape.h"
 #include "tests/e2e/scallopd_process.h"
 #include "tests/test_worlds.h"
 #include "world_messages.h"
@@ -45,8 +46,10 @@ struct UnreadStream {
 // on the old server they took every slot, and every other call was
 // RESOURCE_EXHAUSTED for as long as they stayed.
 TEST(E2eStreamSlotsTest, UnreadStreamsNeitherStarveUnaryCallsNorStayForEver) {
-  auto server = ScallopdProcess::Start({});
+  auto server = ScallopdProcess::Start({"--metrics-listen", "127.0.0.1:0"});
   ASSERT_NE(server, nullptr);
+  const std::string metrics = server->ReadAnnouncedAddress("scallopd metrics on ");
+  ASSERT_FALSE(metrics.empty());
   client::ScallopClient client = server->Client();
   auto stub = v1::Scallop::NewStub(
       grpc::CreateChannel(server->address(), grpc::InsecureChannelCredentials()));
@@ -83,6 +86,15 @@ TEST(E2eStreamSlotsTest, UnreadStreamsNeitherStarveUnaryCallsNorStayForEver) {
   } while (!fresh.ok() && std::chrono::steady_clock::now() < deadline &&
            (std::this_thread::sleep_for(milliseconds(100)), true));
   EXPECT_TRUE(fresh.ok()) << client::DescribeStatus(fresh);
+  // The event: every admitted stream has been dropped for stalling, still
+  // unread (the drain below reads what is left, so a stream it reached before
+  // its stall timer fired would run to its end instead).
+  const std::string stalled_key =
+      "scallop_requests_total{method=\"StreamPoints\",code=\"DEADLINE_EXCEEDED\"}";
+  while (ScrapeMetrics(metrics)[stalled_key] < admitted &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(milliseconds(100));
+  }
   // Each unread stream was either shed at once or dropped for stalling.
   int stalled = 0, shed = 0;
   for (auto& stream : streams) {
