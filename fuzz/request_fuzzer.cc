@@ -154,7 +154,8 @@ void FuzzNearest(const v1::NearestRequest& request) {
   }
   if (status.ok()) {
     status = service.shared.CheckNearestRegions(
-        NearestLookup::CountRegions(resolved.world, positions), "positions", "split");
+        resolved.world, NearestLookup::CountRegions(resolved.world, positions), "positions",
+        "split");
   }
   CheckRefusalOrWorld(request, status, "Nearest");
 }
@@ -175,8 +176,9 @@ void FuzzNoiseGrid(const v1::NoiseGridRequest& request) {
   status =
       ToGrpcStatus(ValidateNoiseGrid(resolved.world, spec, service.config.max_noise_grid_samples));
   if (status.ok()) {
-    status = service.shared.CheckNearestRegions(NoiseGridRegions(resolved.world, spec),
-                                                "step: the samples", "use a smaller step");
+    status =
+        service.shared.CheckNearestRegions(resolved.world, NoiseGridRegions(resolved.world, spec),
+                                           "step: the samples", "use a smaller step");
   }
   CheckRefusalOrWorld(request, status, "NoiseGrid");
 }
