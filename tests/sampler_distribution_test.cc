@@ -98,6 +98,21 @@ Measured Measure(const std::string& name,
   return measured;
 }
 
+// Sample() of `algorithm` on `domain` at d = kD.
+std::vector<Vec2> SampleOn(const Domain& domain, Algorithm algorithm, double density,
+                           bool exhaustive, uint64_t seed) {
+  SamplerOptions options;
+  options.algorithm = algorithm;
+  options.density = density;
+  options.dart_exhaustive = exhaustive;
+  options.domain = domain;
+  options.min_distance = kD;
+  options.seed = seed;
+  StatusOr<std::vector<Vec2>> points = Sample(options);
+  EXPECT_TRUE(points.ok()) << points.status().message();
+  return points.ok() ? std::move(*points) : std::vector<Vec2>{};
+}
+
 Measured MeasureSampler(Algorithm algorithm, double density, bool exhaustive = false,
                         int seeds = kSeeds) {
   char name[64];
@@ -105,19 +120,7 @@ Measured MeasureSampler(Algorithm algorithm, double density, bool exhaustive = f
                 std::string(AlgorithmName(algorithm)).c_str(), exhaustive ? "-exhaustive" : "",
                 density);
   return Measure(
-      name,
-      [&](uint64_t seed) {
-        SamplerOptions options;
-        options.algorithm = algorithm;
-        options.density = density;
-        options.dart_exhaustive = exhaustive;
-        options.domain = kTorus;
-        options.min_distance = kD;
-        options.seed = seed;
-        StatusOr<std::vector<Vec2>> points = Sample(options);
-        EXPECT_TRUE(points.ok()) << points.status().message();
-        return points.ok() ? std::move(*points) : std::vector<Vec2>{};
-      },
+      name, [&](uint64_t seed) { return SampleOn(kTorus, algorithm, density, exhaustive, seed); },
       kTorus, seeds);
 }
 
@@ -449,14 +452,7 @@ TEST(SamplerDistributionTest, A1IsDartThrowingOnARectangle) {
   const auto measure = [&](Algorithm algorithm) {
     return Measure(
         std::string(AlgorithmName(algorithm)) + " on a rectangle",
-        [&](uint64_t seed) {
-          SamplerOptions options;
-          options.algorithm = algorithm;
-          options.dart_exhaustive = true;
-          options.domain = kRectangle;
-          options.seed = seed;
-          return *Sample(options);
-        },
+        [&](uint64_t seed) { return SampleOn(kRectangle, algorithm, 2.0, true, seed); },
         kRectangle);
   };
   const Measured a1 = measure(Algorithm::kA1), dart = measure(Algorithm::kDartThrowing);
