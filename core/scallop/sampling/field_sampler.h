@@ -37,7 +37,7 @@ struct FieldSamplerOptions {
   // Directions tried on each candidate's curve (evenly spaced from a random start). More
   // tries pack denser and leave less to the sweep; at r_max / r_min = 8, 8 and 12 tries were
   // 5-10% faster a point but packed 8% and 3% looser, 24 was 20% slower (docs/performance.md).
-  int curve_tries = 16;
+  int curve_tries = 64;
 };
 
 // What a run did, for tests and the benchmark.
