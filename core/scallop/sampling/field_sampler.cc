@@ -331,8 +331,8 @@ class FieldRun {
   }
 
   // A half-width h (at most t / 2) such that the square of half-side h about x is closed: one
-  // covered rectangle holds it, or every spot of it is masked; 0 when none is found. O(log(t /
-  // pixel)) with the mask's summed-area table.
+  // covered rectangle holds it, or every spot of it is masked (h from t / 2 down to t / 64);
+  // 0 when none is found. O(1) a square with the mask's summed-area table.
   double ClosedAround(Vec2 x, double t) const {
     if (problem_ != nullptr) {
       for (const Rect& r : problem_->covered_rects) {
@@ -342,8 +342,7 @@ class FieldRun {
       }
     }
     if (!field_.HasMask()) return 0.0;
-    const double pixel = field_.spec().pixel_size;
-    for (double h = 0.5 * t; h >= 0.5 * pixel; h *= 0.5) {
+    for (double h = 0.5 * t; h >= t / 64.0; h *= 0.5) {
       if (field_.AllMasked(Rect{x.x - h, x.y - h, x.x + h, x.y + h})) return h;
     }
     return 0.0;
