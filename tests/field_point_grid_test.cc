@@ -1,11 +1,14 @@
 // FieldPointGrid against brute force: AnyNear visits every point inside the window once (the
 // occupancy bits must not hide a cell), including windows wider than 64 columns, points beyond
-// the area (filed in edge cells) and early stops; Conflicts agrees with testing every point.
+// the area (filed in edge cells), points packed and added after packing, and early stops;
+// Conflicts agrees with testing every point.
 #include "scallop/sampling/field_point_grid.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
+#include <utility>
 #include <vector>
 
 #include "scallop/random/rng.h"
@@ -24,13 +27,20 @@ TEST(FieldPointGridTest, AnyNearVisitsEveryPointInTheWindowOnce) {
                     rng.Uniform(1, 100)};
     FieldPointGrid grid(area, cell);
     const int n = 200 + static_cast<int>(rng.Below(2000));
+    // Packed once partway (or, for some seeds, twice, or never), as the field sampler does.
+    const int pack_at = seed % 4 == 0 ? -1 : static_cast<int>(rng.Below(static_cast<uint64_t>(n)));
     for (int k = 0; k < n; ++k) {
+      if (k == pack_at || (seed % 4 == 1 && k == n - 1)) grid.Pack();
       // One in ten beyond the area, which the grid files in its edge cells.
       const Rect where = rng.Below(10) == 0 ? Grown(area, 20.0) : area;
       grid.Add({rng.Uniform(where.x0, where.x1), rng.Uniform(where.y0, where.y1)},
                rng.Uniform(0.1, 5.0));
     }
     const std::vector<FieldPoint>& points = grid.points();
+    // A visited point may be a packed copy: it is known by its position (all distinct here).
+    std::map<std::pair<double, double>, size_t> index_of;
+    for (size_t k = 0; k < points.size(); ++k) index_of[{points[k].p.x, points[k].p.y}] = k;
+    ASSERT_EQ(index_of.size(), points.size());
     for (int w = 0; w < 200; ++w, ++windows) {
       const Vec2 c{rng.Uniform(area.x0 - 30, area.x1 + 30),
                    rng.Uniform(area.y0 - 30, area.y1 + 30)};
@@ -39,7 +49,9 @@ TEST(FieldPointGridTest, AnyNearVisitsEveryPointInTheWindowOnce) {
                         c.y + rng.Uniform(0.0, 10.0 * cell)};
       std::vector<int> seen(points.size(), 0);
       grid.AnyNear(window, [&](const FieldPoint& q) {
-        ++seen[static_cast<size_t>(&q - points.data())];
+        const auto found = index_of.find({q.p.x, q.p.y});
+        EXPECT_TRUE(found != index_of.end() && points[found->second].r == q.r);
+        if (found != index_of.end()) ++seen[found->second];
         return false;
       });
       for (size_t k = 0; k < points.size(); ++k) {

@@ -189,9 +189,9 @@ constexpr struct {
   uint64_t hashes[std::size(kGoldenRegions)];
 } kFieldGolden[] = {
     {RadiusFieldKind::kNoise,
-     {0x8add0a6cd5263d64ULL, 0xc0bfe4e8d36baa71ULL, 0x2e16a2857ecfa130ULL, 0x3fb3784066db885dULL}},
+     {0xf30db24dd8bef49eULL, 0xf76513ef3738848bULL, 0x9283c8cf47087925ULL, 0xe6153594ee128db5ULL}},
     {RadiusFieldKind::kRaster,
-     {0x01fb047f9b339fd1ULL, 0x68e5c26f3fb1d636ULL, 0x5761af11cad87c5fULL, 0x3eecf264bdd7b5a0ULL}},
+     {0xe0deeea5f78df18bULL, 0x604f472b972de5ddULL, 0x4d63500b48b0efecULL, 0x4b9df110c80140e9ULL}},
 };
 
 TEST(PlaneGoldenTest, RegionsOfFieldWorldsHaveTheirPinnedHashes) {

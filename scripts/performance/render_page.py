@@ -126,7 +126,20 @@ def radius_fields(run):
         "|---|---|---|---|\n",
         f"| uniform A3 (baseline) | {si(u)} | 1 | {ratio(u, b)} |\n",
         f"| **SampleField**, noise field | {si(f)} | **{ratio(f, u)}** | **{ratio(f, b)}** |\n",
-        f"| field Bridson, k = 30 (not maximal) | {si(b)} | {ratio(b, u)} | 1 |\n"])
+        f"| field Bridson, k = 30 (not maximal) | {si(b)} | {ratio(b, u)} | 1 |\n",
+        field_work(field)])
+
+
+def field_work(row):
+    """The field sampler's work a point, from its benchmark counters (absent: nothing)."""
+    names = ("spots_per_point", "evaluations_per_point", "cells_per_point", "swept_share")
+    if not all(name in row for name in names):
+        return ""
+    spots, evaluations, cells, swept = (row[name] for name in names)
+    return ("\nWhere SampleField's time goes, a point: "
+            f"{spots:.2f} tries on candidates' curves, {evaluations:.1f} evaluations of R,\n"
+            f"{cells:.1f} sweep cells; {100 * swept:.2f}% of the points seeded by the sweep"
+            " (docs/design.md,\n\"The sampler\").\n")
 
 
 def radius_fields_on_the_plane(run):

@@ -4,6 +4,7 @@
 #include "scallop/sampling/field_sampler.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -11,13 +12,28 @@
 #include "scallop/field/field_evaluator.h"
 #include "scallop/geometry/rect_tiles.h"
 #include "scallop/random/rng.h"
+#include "scallop/sampling/available_boundary.h"
+#include "scallop/sampling/curve_arcs.h"
 #include "scallop/sampling/field_point_grid.h"
 #include "scallop/sampling/sampling_problem.h"
 
 namespace scallop {
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
+// Half the width, in keys (a whole turn is 4), of what a try always cuts about its own
+// direction: 1/128 of a key, 0.7 degrees.
+constexpr double kRefusedKeyHalfWidth = 1.0 / 128.0;
+// The sweep tests a cell for one coverer only when its half-diagonal is below this times the
+// cell's R_hi, and darts in it only below kSweepDartFactor R_lo: larger cells are split untested.
+constexpr double kSweepSplitFactor = 0.5;
+constexpr double kSweepDartFactor = 0.2;
+// The sweep's last coverers, asked first: neighbouring cells are mostly covered by the same
+// few points.
+constexpr size_t kSweepHints = 8;
+// How far from a candidate, in R(p), the growth looks for the disks that cut its circle.
+constexpr double kArcWindow = 2.5;
+// Points before the grid is first packed: below that, its lists are short and in cache.
+constexpr size_t kFirstPack = 4096;
 
 class FieldRun {
  public:
@@ -218,89 +234,50 @@ class FieldRun {
     const auto index = static_cast<int32_t>(grid_.points().size());
     (!stop_ || ReachesStop({x, rx}) ? queue_ : beyond_stop_).push_back(index);
     grid_.Add(x, rx);
+    // Packed whenever the points have doubled: each point is copied about twice in all, and
+    // most of a search's points are read from packed cells.
+    if (grid_.points().size() >= 2 * grid_.packed_count() + kFirstPack) grid_.Pack();
   }
 
-  // True when every spot of p + t u, t in [t_lo, t_hi], lies inside some point's own disk
-  // D(q, R(q)), hence in conflict with q whatever R is there: the try can be skipped without
-  // evaluating the field. Looks at the candidate's gathered neighbours only; a shortcut, never
-  // needed for exactness.
-  bool SegmentInOneDisk(const FieldPoint& p, Vec2 u, double t_lo, double t_hi) const {
-    const Vec2 a{p.p.x + t_lo * u.x, p.p.y + t_lo * u.y};
-    const Vec2 b{p.p.x + t_hi * u.x, p.p.y + t_hi * u.y};
-    for (const std::vector<FieldPoint>* disks : {&near_, &near_exclusions_}) {
-      for (const FieldPoint& q : *disks) {
-        const double r2 = q.r * q.r;
-        if (SquaredDistance(a, q.p) < r2 && SquaredDistance(b, q.p) < r2) return true;
-      }
-    }
-    return false;
-  }
+  // Why a spot of a candidate's curve was refused, so that the growth can cut the directions
+  // the same cause refuses around it.
+  enum class Refusal { kNone, kOutside, kClosed, kDisk };
 
-  // Every point that can conflict with a spot of p's curve: spots lie within
-  // s_max = Pad(R(p) / (1 - L)) of p and have R <= s_max. Gathered once per candidate, so that
-  // its tries scan one short array instead of the grid's cells.
-  void GatherNear(const FieldPoint& p) {
-    spot_limit_ = Pad(p.r * reach_factor_);
-    const double s = spot_limit_;
-    near_.clear();
-    // A spot x of the curve is within s of p and has R(x) <= s, so a point q can conflict with
-    // it only if |x - q| < max(s, R(q)), i.e. |p - q| < s + max(s, R(q)); and q's own disk can
-    // hold a whole bracket only if |p - q| < s + R(q). No such q is farther than s + Reach(s).
-    // (1e-9: the doubles' tests of the spot may pass a point a few ulp farther.)
-    const auto reach = [s](double r) { return (s + std::max(s, r)) * (1.0 + 1e-9); };
-    grid_.AnyNear(Grown(Rect{p.p.x, p.p.y, p.p.x, p.p.y}, s + Reach(s)), [&](const FieldPoint& q) {
-      const double m = reach(q.r);
-      if (SquaredDistance(p.p, q.p) < m * m) near_.push_back(q);
-      return false;
-    });
-    // The exclusion disks that meet the curve's reach: a try inside one is skipped unevaluated.
-    near_exclusions_.clear();
-    if (largest_exclusion_ == 0.0) return;
-    exclusions_.AnyNear(Grown(Rect{p.p.x, p.p.y, p.p.x, p.p.y}, spot_limit_ + largest_exclusion_),
-                        [&](const FieldPoint& e) {
-                          // 1e-9 more: a disk that holds a spot within spot_limit_ of p must be
-                          // listed whatever the rounding of these sums.
-                          const double reach = (spot_limit_ + e.r) * (1.0 + 1e-9);
-                          if (SquaredDistance(p.p, e.p) < reach * reach)
-                            near_exclusions_.push_back(e);
-                          return false;
-                        });
-  }
-
-  // Admissible against the gathered points when the spot is within the gathered range (always,
-  // unless the root search stopped outside its bracket), else against the grid.
-  bool AdmissibleNear(const FieldPoint& p, Vec2 x, double rx) const {
-    if (!(rx <= spot_limit_ && SquaredDistance(p.p, x) <= spot_limit_ * spot_limit_)) {
-      return Admissible(x, rx);
+  // Admissible(x, rx), saying why not; on a refusal by a point or an exclusion disk, *blocker is
+  // that disk (its centre and the radius that refused x).
+  Refusal Judge(Vec2 x, double rx, FieldPoint* blocker) const {
+    if (!rect_.Contains(x)) return Refusal::kOutside;
+    if (field_.IsMasked(x) || (problem_ != nullptr && InCoveredRect(*problem_, x))) {
+      return Refusal::kClosed;
     }
-    // Open(x), with the exclusion disks from the gathered list: it holds every disk that can
-    // hold a spot within spot_limit_ of p.
-    if (!rect_.Contains(x) || field_.IsMasked(x) ||
-        (problem_ != nullptr && InCoveredRect(*problem_, x))) {
-      return false;
+    const Rect spot{x.x, x.y, x.x, x.y};
+    if (largest_exclusion_ > 0.0 &&
+        exclusions_.AnyNear(Grown(spot, largest_exclusion_), [&](const FieldPoint& e) {
+          const double dx = x.x - e.p.x;
+          const double dy = x.y - e.p.y;
+          if (!(dx * dx + dy * dy < e.r * e.r)) return false;
+          *blocker = e;
+          return true;
+        })) {
+      return Refusal::kDisk;
     }
-    for (const FieldPoint& e : near_exclusions_) {
-      const double dx = x.x - e.p.x;
-      const double dy = x.y - e.p.y;
-      if (dx * dx + dy * dy < e.r * e.r) return false;
-    }
-    for (const FieldPoint& q : near_) {
+    const bool conflict = grid_.AnyNear(Grown(spot, Reach(rx)), [&](const FieldPoint& q) {
       const double dx = x.x - q.p.x;
       const double dy = x.y - q.p.y;
       const double m = std::max(rx, q.r);
-      if (dx * dx + dy * dy < m * m) return false;
-    }
-    return true;
+      if (!(dx * dx + dy * dy < m * m)) return false;
+      *blocker = {q.p, m};
+      return true;
+    });
+    return conflict ? Refusal::kDisk : Refusal::kNone;
   }
 
   // The spot along direction u at the spacing p's curve asks for: t = max(R(p), t*) with t* the
   // one root of t - R(p + t u) (slope in [1 - L, 1 + L], so t* <= R(p) / (1 - L)), found by
-  // secant steps kept inside the slope's bracket, padded. Returns false when the spot is
-  // surely in conflict (the bracket lies in one disk); else the spot and R there, which the
-  // caller checks in doubles.
-  bool CurveSpot(const FieldPoint& p, Vec2 u, Vec2* x, double* rx) const {
+  // secant steps kept inside the slope's bracket, padded. Returns the spot and R there, which
+  // the caller checks in doubles.
+  void CurveSpot(const FieldPoint& p, Vec2 u, Vec2* x, double* rx) const {
     double t = p.r;
-    if (SegmentInOneDisk(p, u, Pad(t), Pad(t * reach_factor_))) return false;
     double previous_t = 0.0;
     double previous_f = 0.0;
     for (int iteration = 0;; ++iteration) {
@@ -308,11 +285,10 @@ class FieldRun {
       *x = Vec2{p.p.x + s * u.x, p.p.y + s * u.y};
       *rx = Radius(*x);
       const double f = s - *rx;
-      if (f >= 0.0 || iteration == 5) return true;
+      if (f >= 0.0 || iteration == 5) return;
       double step = iteration == 0 ? -f : -f * (t - previous_t) / (f - previous_f);
       const double lo = -f / (1.0 + slope_);
       const double hi = -f / (1.0 - slope_);
-      if (iteration == 0 && SegmentInOneDisk(p, u, Pad(t + lo), Pad(t + hi))) return false;
       step = iteration >= 3 ? hi : std::clamp(step, lo, hi);
       previous_t = t;
       previous_f = f;
@@ -320,26 +296,116 @@ class FieldRun {
     }
   }
 
+  // Cuts from p's boundary the directions whose spot at distance R(p) lies within the disk of
+  // radius m about c. The circle of radius R(p) stands for p's curve, whose spot in a direction
+  // is at max(R(p), t*); where the two differ (uphill), a cut may take a free spot, which the
+  // sweep finds, or leave one in conflict, which its try refuses: the cut is a guide, never a
+  // certificate (every spot is judged in doubles before it becomes a point).
+  void CutDiskArc(const FieldPoint& p, Vec2 c, double m) {
+    const Vec2 o{c.x - p.p.x, c.y - p.p.y};
+    if (o.x == 0.0 && o.y == 0.0) return;
+    KeyArc arc;
+    Cut(boundary_, DiskArc(o, p.r, m, &arc), arc);
+  }
+
+  // The arcs of every point and exclusion disk near p: a point q refuses a spot x of the circle
+  // when |x - q| < max(R(x), R(q)), taken as max(R(p), R(q)). Only a q with
+  // |p - q| < R(p) + max(R(p), R(q)) meets the circle: within 2 R(p) unless R(q) > R(p). Points
+  // are looked for within kArcWindow R(p), which holds those with R(q) up to 1.5 R(p); a farther
+  // one whose R is larger still (R(q) <= R(p) + L |p - q| allows up to 2 R(p) / (1 - L)) is
+  // found by the try it refuses, which cuts its arc then. Stops once nothing is left.
+  void CutNeighbourArcs(const FieldPoint& p) {
+    const Rect at{p.p.x, p.p.y, p.p.x, p.p.y};
+    grid_.AnyNear(Grown(at, kArcWindow * p.r), [&](const FieldPoint& q) {
+      const double m = std::max(q.r, p.r);
+      const double reach = p.r + m;
+      if (SquaredDistance(p.p, q.p) < reach * reach) CutDiskArc(p, q.p, m);
+      return boundary_.empty();
+    });
+    if (largest_exclusion_ == 0.0 || boundary_.empty()) return;
+    exclusions_.AnyNear(Grown(at, p.r + largest_exclusion_), [&](const FieldPoint& e) {
+      const double reach = p.r + e.r;
+      if (SquaredDistance(p.p, e.p) < reach * reach) CutDiskArc(p, e.p, e.r);
+      return boundary_.empty();
+    });
+  }
+
+  // A half-width h (at most t / 2) such that the square of half-side h about x is closed: one
+  // covered rectangle holds it, or every spot of it is masked (h from t / 2 down to t / 64);
+  // 0 when none is found. O(1) a square with the mask's summed-area table.
+  double ClosedAround(Vec2 x, double t) const {
+    if (problem_ != nullptr) {
+      for (const Rect& r : problem_->covered_rects) {
+        if (r.Contains(x)) {
+          return std::min(0.5 * t, std::min({x.x - r.x0, r.x1 - x.x, x.y - r.y0, r.y1 - x.y}));
+        }
+      }
+    }
+    if (!field_.HasMask()) return 0.0;
+    for (double h = 0.5 * t; h >= t / 64.0; h *= 0.5) {
+      if (field_.AllMasked(Rect{x.x - h, x.y - h, x.x + h, x.y + h})) return h;
+    }
+    return 0.0;
+  }
+
+  // After a refused try at the spot x (direction key `key`): the directions refused for the same
+  // cause on the circle through x, and always a sliver about the key, so that no direction is
+  // tried twice.
+  void CutRefused(const FieldPoint& p, Vec2 x, double key, Refusal refusal,
+                  const FieldPoint& blocker) {
+    const Vec2 o{x.x - p.p.x, x.y - p.p.y};
+    const double t = std::sqrt(o.x * o.x + o.y * o.y);
+    KeyArc arc;
+    if (refusal == Refusal::kDisk) {
+      Cut(boundary_, DiskArc({blocker.p.x - p.p.x, blocker.p.y - p.p.y}, t, blocker.r, &arc), arc);
+    } else if (refusal == Refusal::kClosed) {
+      // The spots within `closed` of x are closed too, so are the directions within closed / t
+      // radians of x's (a key moves at least as fast as the angle: dkey/dangle is in [1, 2]).
+      const double closed = ClosedAround(x, t);
+      if (closed > 0.0) CutAroundKey(boundary_, key, std::min(1.0, closed / t));
+    } else if (refusal == Refusal::kOutside) {
+      const Vec2 normals[4] = {{-1.0, 0.0}, {1.0, 0.0}, {0.0, -1.0}, {0.0, 1.0}};
+      const double distances[4] = {p.p.x - rect_.x0, rect_.x1 - p.p.x, p.p.y - rect_.y0,
+                                   rect_.y1 - p.p.y};
+      for (int k = 0; k < 4; ++k) {
+        if (t * t >= distances[k] * distances[k]) {
+          Cut(boundary_, BeyondLineArc(normals[k], distances[k], t, &arc), arc);
+        }
+      }
+    }
+    CutAroundKey(boundary_, key, kRefusedKeyHalfWidth);
+  }
+
   // Takes candidates uniformly until none is left; with a stop rectangle, only those whose
-  // curve can reach it (the sweep then certifies the rectangle).
+  // curve can reach it (the sweep then certifies the rectangle). A candidate's boundary starts
+  // as its whole curve less the arcs of its neighbours' disks (CutNeighbourArcs); directions are
+  // drawn uniformly by angle from what is left, each spot is found on the true curve and checked in
+  // doubles, and each try cuts its arc (a new point's disk, or the refusing cause's).
   void Grow() {
     while (!queue_.empty()) {
       const size_t k = rng_.Below(queue_.size());
       const int32_t index = queue_[k];
       queue_[k] = queue_.back();
       queue_.pop_back();
-      const double start = kTwoPi * rng_.Uniform();
-      const double step = kTwoPi / tries_;
       const FieldPoint p = grid_.points()[static_cast<size_t>(index)];
-      GatherNear(p);
-      for (int j = 0; j < tries_; ++j) {
+      boundary_.Reset();
+      CutNeighbourArcs(p);
+      for (int j = 0; j < tries_ && !boundary_.empty(); ++j) {
+        const AvailableBoundary::Draw draw = boundary_.SampleDirection(rng_);
+        const Vec2 u = (1.0 / std::sqrt(SquaredLength(draw.direction))) * draw.direction;
         Vec2 x;
         double rx;
         if (stats_ != nullptr) ++stats_->curve_spots;
-        if (CurveSpot(p, UnitAt(start + step * j), &x, &rx) && AdmissibleNear(p, x, rx)) {
+        CurveSpot(p, u, &x, &rx);
+        FieldPoint blocker;
+        const Refusal refusal = Judge(x, rx, &blocker);
+        if (refusal == Refusal::kNone) {
           Place(x, rx);
-          near_.push_back({x, rx});
+          CutDiskArc(p, x, std::max(rx, p.r));
+          CutAroundKey(boundary_, draw.key, kRefusedKeyHalfWidth);
           if (stats_ != nullptr) ++stats_->grown;
+        } else {
+          CutRefused(p, x, draw.key, refusal, blocker);
         }
       }
     }
@@ -359,10 +425,15 @@ class FieldRun {
       const double m = std::max(q.r, r_low);
       return (dx * dx + dy * dy) * (1.0 + 1e-9) < m * m;
     };
-    if (sweep_hint_ && covers(*sweep_hint_)) return true;
+    for (size_t k = 0; k < hint_count_; ++k) {
+      if (covers(hints_[k])) return true;
+    }
     const auto remember = [&](const FieldPoint& q) {
       if (!covers(q)) return false;
-      sweep_hint_ = q;
+      hints_[next_hint_] = q;
+      next_hint_ = (next_hint_ + 1) % kSweepHints;
+      hint_count_ = std::max(hint_count_, next_hint_);
+      if (next_hint_ == 0) hint_count_ = kSweepHints;
       return true;
     };
     const Rect centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1), 0.5 * (c.x0 + c.x1),
@@ -372,10 +443,10 @@ class FieldRun {
 
   // Whether x (with R(x) = rx) conflicts with some point: the sweep's hint first, then the grid.
   bool Conflicts(Vec2 x, double rx) const {
-    if (sweep_hint_) {
-      const double dx = x.x - sweep_hint_->p.x;
-      const double dy = x.y - sweep_hint_->p.y;
-      const double m = std::max(rx, sweep_hint_->r);
+    for (size_t k = 0; k < hint_count_; ++k) {
+      const double dx = x.x - hints_[k].p.x;
+      const double dy = x.y - hints_[k].p.y;
+      const double m = std::max(rx, hints_[k].r);
       if (dx * dx + dy * dy < m * m) return true;
     }
     return grid_.Conflicts(x, rx, Reach(rx));
@@ -388,25 +459,61 @@ class FieldRun {
     return x;
   }
 
-  void Certify(const Rect& c, int depth) {
-    for (;;) {
-      if (field_.HasMask() && field_.AllMasked(c)) return;
-      if (InOneExclusion(c)) return;
-      if (stats_ != nullptr) ++stats_->cells_tested;
+  // `known`: bounds of R over the cell, its parent's; `evaluated`: whether the parent evaluated
+  // them (else only known.hi is meaningful). A cell uses an evaluated parent's bounds as its own
+  // (looser than its own, still true of it), so only every other level evaluates R.
+  void Certify(const Rect& c, int depth, RadiusInterval known, bool evaluated) {
+    if (field_.HasMask() && field_.AllMasked(c)) return;
+    if (InOneExclusion(c)) return;
+    if (stats_ != nullptr) ++stats_->cells_tested;
+    const double half_diagonal = 0.5 * std::sqrt(c.Width() * c.Width() + c.Height() * c.Height());
+    const bool finest = depth >= max_depth_;
+    // One point covers the cell only if its farthest corner, at least half a diagonal away, is
+    // closer than R(q) <= R(centre) + L |q - centre|, i.e. closer than R_hi / (1 - L). A cell
+    // too large for that is split at once: its children test and dart themselves. So is a cell
+    // wider than kSweepSplitFactor R_hi, which one point seldom covers: splitting costs only the
+    // children's tests, never a certificate. Any upper bound of R decides it, the parent's too.
+    const auto too_large = [&](double hi) {
+      return !finest && (half_diagonal >= std::min(field_.r_max(), hi * reach_factor_) ||
+                         half_diagonal >= kSweepSplitFactor * hi);
+    };
+    RadiusInterval bounds = known;
+    bool split = too_large(known.hi);
+    bool own = false;
+    if (!split && !evaluated) {
       if (stats_ != nullptr) ++stats_->evaluations;
-      const RadiusInterval bounds = evaluator_.Bounds(c);
-      // One point covers the cell only if its farthest corner, at least half a diagonal away,
-      // is closer than R(q) <= R(centre) + L |q - centre|, i.e. closer than R_hi / (1 - L).
-      // A cell too large for that is split at once: its children test and dart themselves.
-      const double half_diagonal = 0.5 * std::sqrt(c.Width() * c.Width() + c.Height() * c.Height());
-      if (depth < max_depth_ &&
-          half_diagonal >= std::min(field_.r_max(), bounds.hi * reach_factor_)) {
-        break;
+      bounds = evaluator_.Bounds(c);
+      own = true;
+      split = too_large(bounds.hi);
+    }
+    if (!split && Uncovered(c, half_diagonal, bounds, finest)) split = true;
+    if (!split) return;
+    // A partly masked cell is cut along pixel lines first: its masked part is never covered,
+    // and halving alone would follow the mask's edge down to the finest cells.
+    if (field_.HasMask() && field_.AnyMasked(c)) {
+      Rect pieces[4];
+      const int n = field_.CutAtPixelLines(c, pieces);
+      if (n > 0) {
+        for (int k = 0; k < n; ++k) Certify(pieces[k], depth, bounds, own);
+        return;
       }
-      if (CoveredByOnePoint(c, bounds.lo, bounds.hi)) return;
-      if (largest_exclusion_ > 0.0 && CoveredOrExcludedByBound(c)) return;
+    }
+    const double mx = 0.5 * (c.x0 + c.x1);
+    const double my = 0.5 * (c.y0 + c.y1);
+    Certify({c.x0, c.y0, mx, my}, depth + 1, bounds, own);
+    Certify({mx, c.y0, c.x1, my}, depth + 1, bounds, own);
+    Certify({c.x0, my, mx, c.y1}, depth + 1, bounds, own);
+    Certify({mx, my, c.x1, c.y1}, depth + 1, bounds, own);
+  }
+
+  // Tests the cell against its coverers (seeding growth from a free spot first when it finds
+  // one): false when certified (or, finest, settled by its five spots), true when it must split.
+  bool Uncovered(const Rect& c, double half_diagonal, const RadiusInterval& bounds, bool finest) {
+    for (;;) {
+      if (CoveredByOnePoint(c, bounds.lo, bounds.hi)) return false;
+      if (largest_exclusion_ > 0.0 && CoveredOrExcludedByBound(c)) return false;
       const Vec2 centre{0.5 * (c.x0 + c.x1), 0.5 * (c.y0 + c.y1)};
-      if (depth >= max_depth_) {
+      if (finest) {
         // Finest cell: its centre and quarter points, all inside it (a leaf's inside is wholly
         // unmasked or wholly masked, since partly masked cells were cut at pixel lines). Once
         // each is covered (or excluded), every spot of the cell is within its diagonal of such a
@@ -424,44 +531,31 @@ class FieldRun {
             Grow();
           }
         }
-        return;
+        return false;
       }
-      // Not certified: a free spot seeds growth (a dart, then the centre), else split.
+      // Not certified: a free spot seeds growth (a dart, then the centre), else split. Only in
+      // cells well below the spacing: in larger ones a free spot is rare, and their children,
+      // down to the finest, dart in turn.
+      if (half_diagonal >= kSweepDartFactor * bounds.lo) return true;
       const Vec2 dart{rng_.Uniform(c.x0, c.x1), rng_.Uniform(c.y0, c.y1)};
-      if (TryPlace(dart) || TryPlace(Inside(centre))) {
-        if (stats_ != nullptr) ++stats_->swept;
-        Grow();
-        continue;
-      }
-      break;
+      if (!TryPlace(dart) && !TryPlace(Inside(centre))) return true;
+      if (stats_ != nullptr) ++stats_->swept;
+      Grow();
     }
-    // A partly masked cell is cut along pixel lines first: its masked part is never covered,
-    // and halving alone would follow the mask's edge down to the finest cells.
-    if (field_.HasMask() && field_.AnyMasked(c)) {
-      Rect pieces[4];
-      const int n = field_.CutAtPixelLines(c, pieces);
-      if (n > 0) {
-        for (int k = 0; k < n; ++k) Certify(pieces[k], depth);
-        return;
-      }
-    }
-    const double mx = 0.5 * (c.x0 + c.x1);
-    const double my = 0.5 * (c.y0 + c.y1);
-    Certify({c.x0, c.y0, mx, my}, depth + 1);
-    Certify({mx, c.y0, c.x1, my}, depth + 1);
-    Certify({c.x0, my, mx, c.y1}, depth + 1);
-    Certify({mx, my, c.x1, c.y1}, depth + 1);
   }
 
   // Base cells of side r_max / 2 (diagonal 0.71 r_max, so a point can cover one whole) in rows
   // from the bottom; depth grows until the side is below 2^-30 r_min.
   void Sweep(const Rect& area) {
+    grid_.Pack();
     const double base = 0.5 * field_.r_max();
     max_depth_ = 0;
     for (double side = base; side > field_.r_min() * kFieldLeafFraction; side *= 0.5) {
       ++max_depth_;
     }
-    ForEachTile(area, base, [&](const Rect& tile) { Certify(tile, 0); });
+    ForEachTile(area, base, [&](const Rect& tile) {
+      Certify(tile, 0, {field_.r_min(), field_.r_max()}, false);
+    });
   }
 
   Rect rect_;
@@ -487,14 +581,15 @@ class FieldRun {
   // growth front, left for the next region to continue.
   std::vector<int32_t> queue_;
   std::vector<int32_t> beyond_stop_;
-  // The current candidate's neighbours (GatherNear) and how far its curve's spots reach.
-  std::vector<FieldPoint> near_;
-  std::vector<FieldPoint> near_exclusions_;
-  double spot_limit_ = 0.0;
-  // The point that last covered a sweep cell: the next cell, a neighbour, is often covered by
-  // it, and a spot there in conflict with it. Any point of the run answers either question
-  // truly, so asking it first changes no result.
-  mutable std::optional<FieldPoint> sweep_hint_;
+  // The current candidate's directions left to try.
+  AvailableBoundary boundary_;
+  // The points that last covered sweep cells (hints_[0, hint_count_), next_hint_ the oldest): the
+  // next cell, a neighbour, is often covered by one of them, and a spot there in conflict with
+  // one. Any point of the run answers either question truly, so asking them first changes no
+  // result.
+  mutable std::array<FieldPoint, kSweepHints> hints_ = {};
+  mutable size_t hint_count_ = 0;
+  mutable size_t next_hint_ = 0;
 };
 
 }  // namespace

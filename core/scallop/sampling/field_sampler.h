@@ -34,10 +34,11 @@ struct FieldSamplerOptions {
   // Half-open [x0, x1) x [y0, y1).
   Rect domain;
   uint64_t seed = 0;
-  // Directions tried on each candidate's curve (evenly spaced from a random start). More
-  // tries pack denser and leave less to the sweep; at r_max / r_min = 8, 8 and 12 tries were
-  // 5-10% faster a point but packed 8% and 3% looser, 24 was 20% slower (docs/performance.md).
-  int curve_tries = 16;
+  // Most tries on one candidate's curve. Each try draws a direction from what its neighbours'
+  // arcs and its earlier tries left and cuts its own arc, so a candidate runs out of directions
+  // long before this (1.1 tries a point placed at r_max / r_min = 8); the cap bounds a
+  // candidate whose tries keep meeting masks.
+  int curve_tries = 64;
 };
 
 // What a run did, for tests and the benchmark.
@@ -46,7 +47,7 @@ struct FieldSampleStats {
   int64_t swept = 0;         // points placed by the sweep (seeds of unreached parts, gaps)
   int64_t cells_tested = 0;  // coverage certificates attempted by the sweep
   int64_t leaves = 0;        // finest sweep cells (near-tangent spots), see kFieldLeafFraction
-  int64_t curve_spots = 0;   // spots computed on candidates' curves
+  int64_t curve_spots = 0;   // spots computed on candidates' curves (tries)
   int64_t evaluations = 0;   // R(x) evaluations, bounds included
 };
 
@@ -68,10 +69,9 @@ Status ValidateFieldSamplerOptions(const FieldSamplerOptions& options, const Rad
 //  - maximal up to a tolerance: every unmasked spot x of the closed domain has a point q with
 //    |x - q| < max(R(x), R(q)) + (1 + L) sqrt(2) 2^-30 r_min (the sweep certifies coverage
 //    against R itself, so the growth's 2^-32 placement padding does not enter).
-// Cost: O(N) expected for a fixed r_max / r_min; measured at r_max / r_min = 8, per point: 16
-// curve tries, 16.5 field evaluations, 8.3 sweep cells; 245k-290k points a second on this
-// project's machine, 0.07x uniform A3 and 1.8-2x the field Bridson below
-// (docs/performance.md, "Radius fields, bounded").
+// Cost: O(N) expected for a fixed r_max / r_min; measured at r_max / r_min = 8, per point: 1.1
+// curve tries, 7.1 field evaluations, 8.4 sweep cells (docs/performance.md, "Radius fields,
+// bounded", for the points a second against uniform A3 and the field Bridson below).
 // A constant field is sampled by this algorithm too, so its points differ from Sample's A3:
 // worlds with a constant field keep using Sample.
 StatusOr<std::vector<Vec2>> SampleField(const FieldSamplerOptions& options,
