@@ -230,7 +230,7 @@ TEST(CandidateBoundaryTest, BuildLeavesTheRangesOfCuttingEveryArc) {
     AvailableBoundary built;
     for (int trial = 0; trial < 20000; ++trial) {
       const Scene scene = RandomScene(rng, spacing);
-      builder.Build(scene.centre, scene.other_arcs, scene.neighbours, built);
+      builder.Build(scene.centre, scene.other_arcs, {}, scene.neighbours, built);
       const AvailableBoundary expected = CutEveryArc(scene, spacing);
       ASSERT_TRUE(SameRanges(built, expected)) << "trial " << trial << " spacing " << spacing;
       empty += built.empty();
@@ -252,7 +252,7 @@ TEST(CandidateBoundaryTest, ComparisonCatchesAPlantedMissingArc) {
     const Scene scene = RandomScene(rng, 1.0);
     if (scene.neighbours.empty()) continue;
     ++tried;
-    builder.Build(scene.centre, scene.other_arcs, scene.neighbours, built);
+    builder.Build(scene.centre, scene.other_arcs, {}, scene.neighbours, built);
     caught += !SameRanges(built, CutEveryArc(scene, 1.0, rng.Below(scene.neighbours.size())));
   }
   EXPECT_GT(caught, tried / 4);

@@ -348,6 +348,57 @@ TEST(LayeredWorldTest, MaskedRoadAndSixteenLayersByBruteForce) {
   }
 }
 
+// Exclusion disks that overlap (big points at least 4 apart, each keeping small ones 3 away)
+// leave the small layer pockets between them that no small point's circle reaches from another:
+// A3 seeds each from the disks' circles (a point there lies at the disk's cut radius from its
+// centre, which growth from a point's circle hits with probability 0). Over windows on the
+// corners of both layers' regions: no pair closer than its rule and each layer maximal given
+// the other, by brute force; the verifier agrees.
+TEST(LayeredWorldTest, PocketsClosedByExclusionDisksAreFilled) {
+  WorldSpec spec{.seed = 31};
+  spec.layers = {{.name = "big", .min_distance = 4}, {.name = "small", .min_distance = 1}};
+  spec.exclusions = {{.first = "big", .second = "small", .distance = 3.0}};
+  const World world = ValidWorld(spec);
+  const WorldLayers& layers = *world.layers();
+  // A constant later layer is an A3 world of 16 d regions.
+  EXPECT_EQ(layers.world(1).radius_field(), nullptr);
+  EXPECT_EQ(RegionLayout(layers.world(1)).side(), 16.0);
+  PlaneEngine engine(EngineOptions(2, int64_t{64} << 20));
+  Rng rng(32);
+  int64_t seeded_on_disks = 0;
+  for (int trial = 0; trial < 4; ++trial) {
+    const double side = RegionLayout(layers.world(trial % 2)).side();
+    const Vec2 corner = {side * (static_cast<double>(rng.Below(3)) - 1),
+                         side * (static_cast<double>(rng.Below(3)) - 1)};
+    const Rect window{corner.x - rng.Uniform(6, 10), corner.y - rng.Uniform(6, 10),
+                      corner.x + rng.Uniform(6, 10), corner.y + rng.Uniform(6, 10)};
+    SCOPED_TRACE(::testing::Message() << "window [" << window.x0 << ", " << window.x1 << ") x ["
+                                      << window.y0 << ", " << window.y1 << ")");
+    const PlanePoints halo = MustPoints(engine, world, Grown(window, 10.0));
+    EXPECT_EQ(BruteForceConflicts(halo, layers, window), 0);
+    int64_t small = 0;
+    for (size_t m = 0; m < halo.positions.size(); ++m) {
+      if (halo.layers[m] != 1 || !window.Contains(halo.positions[m])) continue;
+      ++small;
+      for (size_t c = 0; c < halo.positions.size(); ++c) {
+        if (halo.layers[c] != 0) continue;
+        const double gap = std::sqrt(SquaredDistance(halo.positions[m], halo.positions[c])) - 3.0;
+        seeded_on_disks += gap >= 0 && gap < 1e-8;
+      }
+    }
+    EXPECT_GT(small, 10);
+    for (int k = 0; k < 2; ++k) {
+      const Probe probe = BruteForceGap(halo, layers, k, window, 0.2, 40 + trial);
+      EXPECT_LT(probe.worst, 1e-7) << "layer " << layers.name(k) << " uncovered at ("
+                                   << probe.spot.x << ", " << probe.spot.y << ")";
+    }
+    StatusOr<VerifyReport> report = VerifyWorldRect(engine, world, window, QueryLimit{});
+    ASSERT_TRUE(report.ok()) << report.status().message();
+    EXPECT_TRUE(report->passed());
+  }
+  EXPECT_GT(seeded_on_disks, 4);
+}
+
 // The verifier catches a bush moved onto a trunk and a rock removed (whenever brute force
 // finds the gap its removal leaves beyond the tolerance).
 TEST(LayeredWorldTest, PlantedFaultsAreCaught) {

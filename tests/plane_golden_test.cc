@@ -14,6 +14,7 @@
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/point_id.h"
 #include "scallop/plane/region_layout.h"
+#include "scallop/plane/world_layers.h"
 #include "scallop/random/rng.h"
 #include "tests/test_worlds.h"
 
@@ -220,6 +221,45 @@ TEST(PlaneGoldenTest, OtherFieldsGiveOtherHashes) {
     SCOPED_TRACE(changed.Describe());
     EXPECT_NE(RegionHash(engine, changed, {0, 0}), RegionHash(engine, world, {0, 0}));
   }
+}
+
+// Layered worlds (issue 19): each later layer's regions keep clear of the earlier layers'
+// points, which a constant layer's A3 cuts from its circles (and whose own circles it processes
+// for pockets). The forest (8, 3, 1.5, the default matrix) and a world whose disks overlap and
+// close pockets (big 4, small 1, D = 3): every layer's world pinned. The same rule as above.
+World LayeredGoldenWorld(bool pockets) {
+  WorldSpec spec{.seed = 2026};
+  if (pockets) {
+    spec.layers = {{.name = "big", .min_distance = 4}, {.name = "small", .min_distance = 1}};
+    spec.exclusions = {{.first = "big", .second = "small", .distance = 3}};
+  } else {
+    spec.layers = {{.name = "trees", .min_distance = 8},
+                   {.name = "bushes", .min_distance = 3},
+                   {.name = "rocks", .min_distance = 1.5}};
+  }
+  return ValidWorld(spec);
+}
+
+constexpr uint64_t kLayeredGolden[][std::size(kGoldenRegions)] = {
+    // trees, bushes, rocks
+    {0x9838f0e7c55ab0abULL, 0x34f0480f3a3d7e36ULL, 0x7a15b6d8edb1d476ULL, 0xb2511008d74998c7ULL},
+    {0x6a664d6818755862ULL, 0x51a3f6352ca51092ULL, 0x5e6a0b5caed2fb7dULL, 0xee7402dfb2fe95d6ULL},
+    {0x9b97cb3122f9d30bULL, 0xc76edddf91d822acULL, 0x93da6db556f8dffeULL, 0x3c8380e044bc4e15ULL},
+    // big, small
+    {0x73fcdaf72c8d06b4ULL, 0x45b82fe0eee99e8fULL, 0x9739d7d17095bdfcULL, 0x516edccaa0fdd1d8ULL},
+    {0x7dd09eeeecac6372ULL, 0x04221c80933f8ba9ULL, 0xc4ccfed92c5c6882ULL, 0x5a27ca7d94b4aedeULL},
+};
+
+TEST(PlaneGoldenTest, RegionsOfLayeredWorldsHaveTheirPinnedHashes) {
+  size_t pinned = 0;
+  for (const bool pockets : {false, true}) {
+    const World world = LayeredGoldenWorld(pockets);
+    const WorldLayers& layers = *world.layers();
+    for (int k = 0; k < layers.count(); ++k) {
+      ExpectPinnedHashes(layers.world(k), layers.name(k), kLayeredGolden[pinned++]);
+    }
+  }
+  EXPECT_EQ(pinned, std::size(kLayeredGolden));
 }
 
 }  // namespace

@@ -82,10 +82,11 @@ std::vector<RegionKey> LowerRankedNeighbours(RegionKey key);
 // A3 on average (a rank-0 region places more, a rank-3 region fewer); a
 // field world's region holds up to 0.86 (6 r_max / R)^2 points where the
 // field is near R.
-// The world of a layer generated after others (World::earlier_layers()) is a
-// field world that also keeps clear of `exclusions`: every point of the earlier
-// layers strictly within D of the sampled rectangle, with D as its radius
-// (RegionExclusions), which the sampler treats as masked.
+// The world of a layer generated after others (World::earlier_layers()) also
+// keeps clear of `exclusions`: every point of the earlier layers strictly
+// within D of the sampled rectangle, with D as its radius (RegionExclusions).
+// A3 (a constant layer) cuts them from its circles and processes their own
+// circles too; the field sampler (a field layer) treats them as masked.
 RegionPoints GenerateRegion(const World& world, RegionKey key,
                             std::span<const RegionPoints* const> lower_neighbours,
                             std::span<const ExclusionDisk> exclusions = {});

@@ -166,7 +166,7 @@ std::string World::Describe() const {
     if (UsesDensity(algorithm())) out << " density=" << NumberText(density());
     out << " version=" << generator_version() << " layers=[";
     for (int k = 0; k < layers_->count(); ++k) {
-      // The canonical spec's spacing: a later layer's world has a constant field.
+      // Each layer's spacing as the canonical spec gives it.
       const LayerSpec& layer = spec_.layers[static_cast<size_t>(k)];
       out << (k > 0 ? " " : "") << layer.name << ":";
       if (!layer.radius_field.has_value()) {

@@ -190,9 +190,10 @@ StatusOr<World> WorldLayers::Create(const WorldSpec& spec) {
     layers->largest_spacing_ = std::max(layers->largest_spacing_, plain[a].max_spacing());
   }
 
-  // The layers' worlds. The first generated is the plain world; each later one is sampled by
-  // the field growth (a constant layer with a constant field), with its own seed, keeping
-  // clear of the earlier ones, and its fingerprint hashes theirs and the distances.
+  // The layers' worlds. The first generated is the plain world; each later one has its own
+  // seed and keeps clear of the earlier ones, and its fingerprint hashes theirs and the
+  // distances. A constant later layer is an A3 world (16 d regions; A3 cuts the disks from its
+  // circles), a field layer a field world (the field sampler masks the disks).
   layers->worlds_.resize(n);
   std::vector<World> generated;
   for (size_t g = 0; g < n; ++g) {
@@ -204,11 +205,7 @@ StatusOr<World> WorldLayers::Create(const WorldSpec& spec) {
     }
     WorldSpec own = plain[k].spec();
     own.seed = HashWords({spec.seed, kLayerSeedStream, static_cast<uint64_t>(g)});
-    std::shared_ptr<const RadiusField> field = plain[k].field_;
-    if (field == nullptr)
-      field = std::make_shared<const RadiusField>(RadiusField::Constant(own.min_distance));
-    own.radius_field = field->spec();
-    World world(own, field);
+    World world(own, plain[k].field_);
     auto earlier = std::make_shared<EarlierLayers>();
     uint64_t h = HashWords({world.fingerprint_, kLayeredWorldTag});
     for (size_t j = 0; j < g; ++j) {

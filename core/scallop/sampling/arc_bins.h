@@ -4,8 +4,11 @@
 // the arcs that meet a bin left over (1.6 of 7.5 a candidate, at 1M points).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "scallop/geometry/vec2.h"
 #include "scallop/sampling/available_boundary.h"
@@ -53,5 +56,49 @@ class NeighbourBins {
   double scale_;
   const Cells* cells_;
 };
+
+// The bins of the arc of a circle of radius rho that a disk of radius lambda rho covers, for
+// one ratio lambda: NeighbourBins' table for disks of another radius than the circle's (the
+// second intersection rule, CoveredArcOfCircle), such as a layered world's exclusion disks seen
+// from A3's circles. Looked up by offset / rho in cells 1/16 rho wide over offsets up to
+// (1 + lambda) rho. Conservative for the arcs CoveredArcOfCircle computes with any disk radius
+// within a factor 1 +- kDiskBinsRatioSlack of lambda rho (the margins samplers add to radii
+// move the ratio by less), with the margin 1e-7 + lambda^2 2^-13 in g.
+class DiskBins {
+ public:
+  // Ratios up to this get a table (97 x 97 cells at 2, about 150 kB, built in about 10 ms).
+  static constexpr double kMaxRatio = 2.0;
+  // At most this many ratios get a table in a process; later ones get none.
+  static constexpr int kMaxTables = 32;
+  static constexpr double kRatioSlack = 0x1.0p-14;
+
+  // The table for `ratio`, built at the first call for that ratio and kept for the process (a
+  // pure function of the ratio, as NeighbourBins' table; thread-safe); null above kMaxRatio,
+  // for a ratio not above 0, or once kMaxTables ratios have tables: then the caller computes
+  // the arcs exactly, with the same result.
+  static const DiskBins* ForRatio(double ratio);
+
+  // The bins for the disk at `offset` from the circle's centre, with inverse_cell = 16 / rho.
+  // REQUIRES: |offset| < rho + disk radius (as computed in doubles). O(1).
+  ArcBins Of(Vec2 offset, double inverse_cell) const {
+    const auto cell = [&](double v) {
+      return std::clamp(static_cast<int>(v * inverse_cell + half_cells_), 0, side_ - 1);
+    };
+    return cells_[static_cast<size_t>(cell(offset.y) * side_ + cell(offset.x))];
+  }
+
+ private:
+  explicit DiskBins(double ratio);
+
+  int half_cells_, side_;
+  std::vector<ArcBins> cells_;
+};
+
+// Fills the side x side cells (side = 2 half_cells + 1, row-major from the lowest offsets) of a
+// table of bins for disks of radius `ratio` (in units of the circle's radius) over offsets from
+// -half_cells / 16 on, 1/16 a cell; covered bins only where g >= margin over the whole cell and
+// bin, reached wherever g >= -margin may hold. NeighbourBins (ratio 1, margin 1e-7, 32) and
+// DiskBins build their tables with it.
+void BuildArcBinCells(double ratio, double margin, int half_cells, ArcBins* cells);
 
 }  // namespace scallop

@@ -42,6 +42,34 @@ inline void CoveredArcs(Vec2 offset0, Vec2 offset1, double spacing_squared, KeyA
   for (int lane = 0; lane < 2; ++lane) arcs[lane] = {from_key[lane], to_key[lane]};
 }
 
+// How much of a circle a disk covers.
+enum class DiskCover { kNone, kArc, kWhole };
+
+// The arc of the circle of radius `radius` about a centre that the closed disk of radius
+// `disk_radius` about the point at `offset` from that centre covers: the second intersection
+// rule, for a disk of another radius than the circle's (an exclusion disk of a layered world, or
+// a point's disk seen from an exclusion disk's circle). CoveredArcs is the case of equal radii.
+// With L = |offset|, a = radius^2 + L^2 - disk_radius^2 and h = sqrt(4 radius^2 L^2 - a^2), the
+// arc's ends lie along a o -+ h o' (o' = o turned left): the law of cosines, cos = a / (2 radius
+// L), without dividing by it. kNone (arc untouched) when the circles do not cross: the disk lies
+// beyond the circle or inside it; kWhole when the disk holds the circle. Only IEEE arithmetic
+// and one square root; near tangency the ends move by about 1e-8 radians of rounding, where the
+// circle runs within 1e-16 of the disk's edge, far inside the samplers' spacing margin.
+inline DiskCover CoveredArcOfCircle(Vec2 offset, double radius, double disk_radius, KeyArc& arc) {
+  const double l2 = SquaredLength(offset);
+  const double sum = radius + disk_radius, difference = disk_radius - radius;
+  if (l2 >= sum * sum) return DiskCover::kNone;
+  if (l2 <= difference * difference) return difference >= 0 ? DiskCover::kWhole : DiskCover::kNone;
+  const double r2 = radius * radius;
+  const double a = r2 + l2 - disk_radius * disk_radius;
+  const double h = std::sqrt(std::max(0.0, 4 * r2 * l2 - a * a));
+  const Doubles keys =
+      PseudoAngles(Doubles{a * offset.x + h * offset.y, a * offset.x - h * offset.y},
+                   Doubles{a * offset.y - h * offset.x, a * offset.y + h * offset.x});
+  arc = {keys[0], keys[1]};
+  return DiskCover::kArc;
+}
+
 // The arc of the candidate's circle that a point placed on it, in direction
 // `direction` (any length), covers with its disk: half-width pi/3 about it.
 // Rotating by -+60 degrees needs no trigonometry: cos = 1/2, sin = sqrt(3)/2.

@@ -11,6 +11,7 @@
 
 #include "scallop/sampling/available_boundary.h"
 #include "scallop/sampling/boundary_arcs.h"
+#include "scallop/sampling/boundary_exclusions.h"
 #include "scallop/sampling/boundary_grid.h"
 #include "scallop/sampling/candidate_boundary.h"
 #include "scallop/sampling/point_grid.h"
@@ -67,20 +68,84 @@ bool FarFromAll(Vec2 x, const Vec2* points, size_t count, double limit_squared) 
 // A key interval this wide (about a draw's key) is given up when a placement
 // there fails the double-precision checks: a rounding sliver.
 constexpr double kRejectedKeyWidth = 1e-12;
+// Placements failing the double-precision checks in a row before the
+// candidate's boundary is given up as rounding slivers.
+constexpr int kMaxRejectedPlacements = 64;
+
+// Gives up a key whose placement failed the double-precision checks (and a
+// rounding-sized neighbourhood of it). Only rounding slivers fail; should a
+// whole arc ever fail, the boundary is given up rather than drawn from
+// forever. `rejected` counts failures in a row.
+void RejectKey(double key, int& rejected, AvailableBoundary& boundary) {
+  const double from = key - kRejectedKeyWidth, to = key + kRejectedKeyWidth;
+  boundary.SubtractArc(from < 0 ? from + kFullTurnKey : from,
+                       to > kFullTurnKey ? to - kFullTurnKey : to);
+  if (++rejected == kMaxRejectedPlacements) boundary.Clear();
+}
+
+// Settles a draw at `key` placed at x: gives the key up when x failed the double-precision
+// checks, or else adds x (add_point) and among the circle's neighbours, nearby[0,
+// nearby_count). Returns whether x was placed.
+template <typename AddPoint>
+bool Settle(bool valid, Vec2 x, double key, int& rejected, AvailableBoundary& boundary,
+            AddPoint& add_point, std::vector<Vec2>& nearby, size_t& nearby_count) {
+  if (!valid) {
+    RejectKey(key, rejected, boundary);
+    return false;
+  }
+  rejected = 0;
+  add_point(x);
+  if (nearby_count == nearby.size()) nearby.push_back(x);
+  nearby[nearby_count++] = x;
+  return true;
+}
+
+// Processes the circle of exclusion disk `disk` (its cut radius) as A3 processes a point's:
+// its part inside `area` less the arcs the points' disks (radius `spacing`) and the other
+// exclusion disks cover, then points placed on what is left until nothing is, each added by
+// add_point. `grid` holds every point. Scratch: nearby, arcs, candidate_boundary, boundary.
+template <typename Grid, typename AddPoint>
+void PlaceOnDiskCircle(const SamplingProblem& problem, double spacing,
+                       BoundaryExclusions& exclusions, uint32_t disk, const Rect& area,
+                       const Grid& grid, Rng& rng, std::vector<Vec2>& nearby,
+                       std::vector<KeyArc>& arcs, CandidateBoundary& candidate_boundary,
+                       AvailableBoundary& boundary, AddPoint add_point) {
+  const Vec2 c = exclusions.centre(disk);
+  const double radius = exclusions.cut_radius(disk);
+  arcs.clear();
+  if (!ClipToRectangle(area, c, radius, arcs)) return;
+  const double reach = radius + spacing;
+  size_t nearby_count = grid.GatherNear(c, reach, reach * reach, -1, nearby);
+  if (!exclusions.DisksAroundDisk(disk, std::span(nearby.data(), nearby_count))) return;
+  candidate_boundary.Build(c, arcs, exclusions.disk_arcs(), {}, boundary);
+  const double d_squared = problem.min_distance * problem.min_distance;
+  int rejected = 0;  // in a row
+  while (!boundary.empty()) {
+    const auto [direction, key] = boundary.SampleDirection(rng);
+    const Vec2 x = c + (radius / std::sqrt(SquaredLength(direction))) * direction;
+    // The checks of a point's circle; x's distance to c is the cut radius, above D.
+    const bool valid = problem.domain.rect.Contains(x) && !InCoveredRect(problem, x) &&
+                       FarFromAll(x, nearby.data(), nearby_count, d_squared) &&
+                       !exclusions.Excludes(x);
+    if (!Settle(valid, x, key, rejected, boundary, add_point, nearby, nearby_count)) continue;
+    KeyArc placed;
+    const DiskCover cover = CoveredArcOfCircle(x - c, radius, spacing, placed);
+    if (cover == DiskCover::kWhole) boundary.Clear();
+    if (cover == DiskCover::kArc) boundary.SubtractArc(placed.from_key, placed.to_key);
+  }
+}
 
 // SampleBoundary with `grid`, empty, covering the domain (a torus) or the
 // domain grown by 2 d + spacing (a rectangle): PointGrid, or on a rectangle
 // BoundaryGrid, which holds the same cells in less memory.
 template <typename Grid>
-std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Grid& grid, Rng& rng,
+std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
+                             BoundaryExclusions& exclusions, Grid& grid, Rng& rng,
                              std::vector<bool>* unprocessed) {
   const Domain& domain = problem.domain;
   const double d = problem.min_distance;
   const double spacing_squared = spacing * spacing;
   const double d_squared = d * d;
-  // Placements failing the double-precision checks in a row before the
-  // candidate's boundary is given up as rounding slivers.
-  constexpr int kMaxRejectedPlacements = 64;
 
   // Room for as many points as a maximal set of the domain holds (A3 packs
   // 0.86 / d^2), up to 2^22: growing by doubling copied them over and over,
@@ -120,7 +185,11 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
     points.push_back(p);
     add_candidate(index, p);
   };
-  if (NeedsSeedPoint(problem, spacing)) add_point(SeedPoint(problem, rng));
+  if (NeedsSeedPoint(problem, spacing)) {
+    // A seed inside an exclusion disk is dropped: the disks' circles seed the growth (below).
+    const Vec2 seed = SeedPoint(problem, rng);
+    if (!exclusions.AnyExcludes(seed)) add_point(seed);
+  }
 
   AvailableBoundary boundary;
   // Neighbours of the candidate, as images near it: nearby[0, nearby_count).
@@ -128,7 +197,33 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
   size_t nearby_count = 0;
   std::vector<KeyArc> outside_arcs;  // of the candidate's circle, outside the rectangle
   CandidateBoundary candidate_boundary(spacing);
-  while (!candidates.empty() && !(stop && pending_near_stop == 0)) {
+  // The exclusion disks whose circle is still to be processed: those that reach the stop
+  // rectangle (or the domain), each once, after the points' circles there (below).
+  std::vector<uint32_t> pockets;
+  const Rect& pocket_area = stop ? *stop : domain.rect;
+  for (size_t k = 0; k < exclusions.size(); ++k) {
+    const double r = exclusions.cut_radius(k);
+    if (SquaredDistance(pocket_area, exclusions.centre(k)) <= r * r) {
+      pockets.push_back(static_cast<uint32_t>(k));
+    }
+  }
+  while (true) {
+    if (candidates.empty() || (stop && pending_near_stop == 0)) {
+      // Every point's circle near the stop rectangle is processed. A spot there that is still
+      // free (farther than `spacing` from every point, outside every disk) with no free spot of
+      // a point's circle around it lies in a pocket that exclusion disks close, and a pocket's
+      // edge is a disk's circle: process those, uniformly in turn, placing on the part inside
+      // the stop rectangle (or domain) only, so that nothing is placed ahead of the growth
+      // front. Points placed there are candidates, and the growth resumes from them.
+      if (pockets.empty()) break;
+      const size_t pick = rng.Below(pockets.size());
+      const uint32_t disk = pockets[pick];
+      pockets[pick] = pockets.back();
+      pockets.pop_back();
+      PlaceOnDiskCircle(problem, spacing, exclusions, disk, pocket_area, grid, rng, nearby,
+                        outside_arcs, candidate_boundary, boundary, add_point);
+      continue;
+    }
     // Uniform choice among candidates, as the paper prescribes.
     const size_t pick = rng.Below(candidates.size());
     const auto [p, index] = candidates[pick];
@@ -137,10 +232,12 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
     pending_near_stop -= reaches_stop(p);
 
     outside_arcs.clear();
-    const bool inside = domain.torus || ClipToRectangle(domain.rect, p, spacing, outside_arcs);
+    bool inside = domain.torus || ClipToRectangle(domain.rect, p, spacing, outside_arcs);
+    if (inside && !exclusions.empty()) inside = exclusions.DisksAroundPoint(p);
     nearby_count = grid.GatherNear(p, 2 * spacing, 4 * spacing_squared, index, nearby);
     if (inside) {
-      candidate_boundary.Build(p, outside_arcs, std::span(nearby.data(), nearby_count), boundary);
+      candidate_boundary.Build(p, outside_arcs, exclusions.disk_arcs(),
+                               std::span(nearby.data(), nearby_count), boundary);
     } else {
       boundary.Clear();
     }
@@ -161,20 +258,8 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing, Gri
         }
       }
       valid = valid && SquaredDistance(grid.NearestImage(x, p), x) >= d_squared;
-      if (!valid) {
-        // Give up this key (and a rounding-sized neighbourhood of it). Only
-        // rounding slivers fail; should a whole arc ever fail, the candidate
-        // is given up rather than drawn from forever.
-        const double from = key - kRejectedKeyWidth, to = key + kRejectedKeyWidth;
-        boundary.SubtractArc(from < 0 ? from + kFullTurnKey : from,
-                             to > kFullTurnKey ? to - kFullTurnKey : to);
-        if (++rejected == kMaxRejectedPlacements) boundary.Clear();
-        continue;
-      }
-      rejected = 0;
-      add_point(x);
-      if (nearby_count == nearby.size()) nearby.push_back(x);
-      nearby[nearby_count++] = x;
+      valid = valid && !(!exclusions.empty() && exclusions.Excludes(x));
+      if (!Settle(valid, x, key, rejected, boundary, add_point, nearby, nearby_count)) continue;
       // Only the arc of x's disk at distance exactly `spacing` from the
       // candidate is removed: half-width acos(1/2) = pi/3.
       const KeyArc placed = PlacedArc(direction);
@@ -198,13 +283,17 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
   const Domain& domain = problem.domain;
   const double d = problem.min_distance;
   const double reach = 2.0 * d;  // fixed points lie within 2 d of the domain
-  const double spacing = SpacingFor(d, MaxAbsCoordinate(problem, domain.torus ? 0.0 : reach));
+  const double max_abs = MaxAbsCoordinate(problem, domain.torus ? 0.0 : reach);
+  const double spacing = SpacingFor(d, max_abs);
+  // Exclusion disks are a plane region's (rectangles only): a torus gets none.
+  BoundaryExclusions exclusions(
+      domain.torus ? std::span<const ExclusionDisk>{} : problem.exclusions, d, spacing, max_abs);
   if (domain.torus) {
     PointGrid grid(domain.rect, true, d);
-    return SampleWith(problem, spacing, grid, rng, unprocessed);
+    return SampleWith(problem, spacing, exclusions, grid, rng, unprocessed);
   }
   BoundaryGrid grid(domain.rect, d, reach + spacing);
-  return SampleWith(problem, spacing, grid, rng, unprocessed);
+  return SampleWith(problem, spacing, exclusions, grid, rng, unprocessed);
 }
 
 }  // namespace scallop

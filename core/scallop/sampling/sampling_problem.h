@@ -50,8 +50,10 @@ struct SamplingProblem {
   // When set (inside the domain), where the first point is drawn from if no
   // fixed point seeds the domain.
   std::optional<Rect> seed_area;
-  // Field runs only (SampleFieldProblem): disks no new point may enter, and whose spots need no
-  // cover (they count as masked): the earlier layers of a layered world. Any order.
+  // Disks no new point may enter, and whose spots need no cover: the earlier layers of a
+  // layered world. Any order. Taken by A3 on rectangles (SampleBoundary: cut from the circles,
+  // and their own circles processed) and by field runs (SampleFieldProblem: masked); the other
+  // samplers ignore them.
   std::span<const ExclusionDisk> exclusions;
 };
 

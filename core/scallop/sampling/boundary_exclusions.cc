@@ -1,0 +1,171 @@
+// BoundaryExclusions: the disks filed in cells of the largest radius, with a DiskBins table for
+// each pair of radii (a circle's and a disk's) whose ratio has one, and the second intersection
+// rule for the arcs the tables leave.
+#include "scallop/sampling/boundary_exclusions.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scallop/sampling/boundary_arcs.h"
+#include "scallop/sampling/spacing.h"
+
+namespace scallop {
+namespace {
+
+// The table for a disk of radius `disk` (cut at disk_cut) seen from a circle of radius `circle`
+// (cut at circle_cut): that of the given ratio, when the cut radii's ratio lies within its slack
+// (far from the origin the margins are absolute, and a small radius's ratio moves more).
+const DiskBins* TableFor(double disk, double disk_cut, double circle, double circle_cut) {
+  const double ratio = disk / circle;
+  const double slack = 0.5 * DiskBins::kRatioSlack * ratio;
+  return std::abs(disk_cut / circle_cut - ratio) <= slack ? DiskBins::ForRatio(ratio) : nullptr;
+}
+
+}  // namespace
+
+BoundaryExclusions::BoundaryExclusions(std::span<const ExclusionDisk> disks, double min_distance,
+                                       double spacing, double max_abs_coordinate)
+    : min_distance_(min_distance), spacing_(spacing) {
+  std::vector<Disk> given;
+  for (const ExclusionDisk& disk : disks) {
+    if (!(disk.radius > 0.0)) continue;
+    // Disks come layer by layer, so the last radius is nearly always the one.
+    auto radius = static_cast<uint32_t>(radii_.size());
+    if (!radii_.empty() && radii_.back().given == disk.radius) {
+      radius = radius - 1;
+    } else {
+      for (uint32_t r = 0; r < radii_.size(); ++r) {
+        if (radii_[r].given == disk.radius) radius = r;
+      }
+    }
+    if (radius == radii_.size()) {
+      const double cut = SpacingFor(disk.radius, max_abs_coordinate);
+      radii_.push_back({disk.radius,
+                        cut,
+                        disk.radius * disk.radius,
+                        TableFor(disk.radius, cut, min_distance, spacing),
+                        {},
+                        nullptr});
+      largest_cut_ = std::max(largest_cut_, cut);
+    }
+    given.push_back({disk.centre, radius});
+  }
+  if (given.empty()) return;
+  for (Radius& circle : radii_) {
+    circle.point_from_here = TableFor(min_distance, spacing, circle.given, circle.cut);
+    for (const Radius& disk : radii_) {
+      circle.from_disk.push_back(TableFor(disk.given, disk.cut, circle.given, circle.cut));
+    }
+    from_point_.push_back(circle.from_point);
+  }
+
+  // Filed by cell (a counting sort, stable), so that a query reads consecutive disks.
+  Vec2 low = given.front().centre, high = low;
+  for (const Disk& disk : given) {
+    low = {std::min(low.x, disk.centre.x), std::min(low.y, disk.centre.y)};
+    high = {std::max(high.x, disk.centre.x), std::max(high.y, disk.centre.y)};
+  }
+  origin_ = low;
+  inverse_cell_ = 1.0 / largest_cut_;
+  columns_ = static_cast<int64_t>((high.x - low.x) * inverse_cell_) + 1;
+  rows_ = static_cast<int64_t>((high.y - low.y) * inverse_cell_) + 1;
+  const auto cell_of = [&](Vec2 p) {
+    const int64_t column =
+        std::min(static_cast<int64_t>((p.x - origin_.x) * inverse_cell_), columns_ - 1);
+    const int64_t row =
+        std::min(static_cast<int64_t>((p.y - origin_.y) * inverse_cell_), rows_ - 1);
+    return static_cast<size_t>(row * columns_ + column);
+  };
+  cell_start_.assign(static_cast<size_t>(columns_ * rows_) + 1, 0);
+  for (const Disk& disk : given) ++cell_start_[cell_of(disk.centre) + 1];
+  for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+  disks_.resize(given.size());
+  std::vector<uint32_t> filled(cell_start_.begin(), cell_start_.end() - 1);
+  for (const Disk& disk : given) disks_[filled[cell_of(disk.centre)]++] = disk;
+  arcs_.reserve(disks_.size());
+  near_.reserve(disks_.size());
+}
+
+bool BoundaryExclusions::AddArc(Vec2 offset, double circle, double disk_radius,
+                                const DiskBins* table) {
+  DiskArc arc{{0, 0}, {0, 0}, offset, circle, disk_radius, false};
+  if (table != nullptr) {
+    arc.bins = table->Of(offset, 16.0 / circle);
+  } else {
+    const DiskCover cover = CoveredArcOfCircle(offset, circle, disk_radius, arc.arc);
+    if (cover == DiskCover::kWhole) return false;
+    if (cover == DiskCover::kNone) return true;
+    arc.bins = BinsOf(arc.arc);
+    arc.has_arc = true;
+  }
+  arcs_.push_back(arc);
+  return true;
+}
+
+bool BoundaryExclusions::Around(Vec2 centre, double circle, const DiskBins* const* tables,
+                                size_t skip) {
+  arcs_.clear();
+  near_.clear();
+  // Cells clamped to the grid: every centre lies in it, so the clamped range still holds each
+  // centre within reach. Floor, not truncation: offsets may be negative here.
+  const double reach = circle + largest_cut_;
+  const auto index = [&](double offset, int64_t count) {
+    const double cell = std::floor(offset * inverse_cell_);
+    return static_cast<int64_t>(std::clamp(cell, 0.0, static_cast<double>(count - 1)));
+  };
+  const int64_t c0 = index(centre.x - reach - origin_.x, columns_);
+  const int64_t c1 = index(centre.x + reach - origin_.x, columns_);
+  const int64_t r0 = index(centre.y - reach - origin_.y, rows_);
+  const int64_t r1 = index(centre.y + reach - origin_.y, rows_);
+  bool whole = false;
+  for (int64_t row = r0; row <= r1; ++row) {
+    const uint32_t first = cell_start_[static_cast<size_t>(row * columns_ + c0)];
+    const uint32_t last = cell_start_[static_cast<size_t>(row * columns_ + c1) + 1];
+    for (uint32_t k = first; k < last; ++k) {
+      const Disk& disk = disks_[k];
+      const Radius& radius = radii_[disk.radius];
+      const Vec2 offset = disk.centre - centre;
+      const double meets = circle + radius.cut;
+      if (SquaredLength(offset) >= meets * meets) continue;
+      near_.push_back(k);
+      if (k == skip) continue;
+      whole = whole || !AddArc(offset, circle, radius.cut, tables[disk.radius]);
+    }
+  }
+  return !whole;
+}
+
+bool BoundaryExclusions::DisksAroundPoint(Vec2 centre) {
+  return Around(centre, spacing_, from_point_.data(), SIZE_MAX);
+}
+
+bool BoundaryExclusions::DisksAroundDisk(size_t k, std::span<const Vec2> points) {
+  const Vec2 centre = disks_[k].centre;
+  const Radius& circle = radii_[disks_[k].radius];
+  if (!Around(centre, circle.cut, circle.from_disk.data(), k)) return false;
+  const double meets = circle.cut + spacing_;
+  for (const Vec2& q : points) {
+    const Vec2 offset = q - centre;
+    if (SquaredLength(offset) >= meets * meets) continue;
+    if (!AddArc(offset, circle.cut, spacing_, circle.point_from_here)) return false;
+  }
+  return true;
+}
+
+bool BoundaryExclusions::Excludes(Vec2 x) const {
+  bool inside = false;
+  for (const uint32_t k : near_) {
+    inside = inside || SquaredDistance(x, disks_[k].centre) < radii_[disks_[k].radius].squared;
+  }
+  return inside;
+}
+
+bool BoundaryExclusions::AnyExcludes(Vec2 x) const {
+  bool inside = false;
+  for (const Disk& disk : disks_) {
+    inside = inside || SquaredDistance(x, disk.centre) < radii_[disk.radius].squared;
+  }
+  return inside;
+}
+
+}  // namespace scallop

@@ -1,0 +1,100 @@
+// BoundaryExclusions: a layered world's exclusion disks as A3 sees them (issue 19; docs/design.md,
+// "Layered worlds"). A disk cuts the arc it covers from a candidate's circle, refuses the
+// placements that fall inside it, and its own circle is a candidate of another radius: a spot
+// that no point's circle reaches (a pocket that disks enclose) lies on some disk's circle.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "scallop/geometry/vec2.h"
+#include "scallop/sampling/arc_bins.h"
+#include "scallop/sampling/candidate_boundary.h"
+#include "scallop/sampling/sampling_problem.h"
+
+namespace scallop {
+
+// Not thread-safe: each query keeps what it found for the next calls.
+class BoundaryExclusions {
+ public:
+  // `disks` in any order (disks of radius <= 0 exclude nothing and are dropped); each is cut with
+  // the radius SpacingFor(D, max_abs_coordinate), so that placements on the cut keep D in
+  // doubles, as points keep d (min_distance) on circles of radius `spacing`. O(disks) time and
+  // memory, and a DiskBins table looked up for each pair of radii; nothing for no disks.
+  BoundaryExclusions(std::span<const ExclusionDisk> disks, double min_distance, double spacing,
+                     double max_abs_coordinate);
+
+  bool empty() const { return disks_.empty(); }
+  // Disks are numbered 0 .. size() - 1 in a fixed order (by cell, then as given).
+  size_t size() const { return disks_.size(); }
+  Vec2 centre(size_t k) const { return disks_[k].centre; }
+  // The radius disk k is cut with, a hair above its D.
+  double cut_radius(size_t k) const { return radii_[disks_[k].radius].cut; }
+
+  // The disks that may cover part of the circle of radius `spacing` about `centre` (a point's),
+  // each with the bins of the arc it covers (from a DiskBins table where its ratio has one, so
+  // that most arcs are never computed), into disk_arcs() for CandidateBoundary::Build, and
+  // remembered for Excludes. Returns false when one disk holds the whole circle.
+  // O(disks near the circle).
+  bool DisksAroundPoint(Vec2 centre);
+
+  // The same for the circle of disk k (its cut radius, `k` itself left out), then the disks of
+  // radius `spacing` about those of `points` within reach of it. Returns false when one disk
+  // holds the whole circle.
+  bool DisksAroundDisk(size_t k, std::span<const Vec2> points);
+
+  // What the last DisksAround call found. Valid until the next.
+  std::span<const DiskArc> disk_arcs() const { return arcs_; }
+
+  // Whether a disk remembered by the last DisksAround holds x: dx^2 + dy^2 < D^2 in doubles, the
+  // verifier's expression with D as given. REQUIRES: x on (or within rounding of) that call's
+  // circle.
+  bool Excludes(Vec2 x) const;
+
+  // Whether any disk holds x, as Excludes. O(disks): for a run's seed.
+  bool AnyExcludes(Vec2 x) const;
+
+ private:
+  // One of the distinct radii, with the tables that see its disks: from a point's circle, and
+  // (for_disk[j]) from the circle of a disk of radius j; and the table that sees a point's disk
+  // from its own circle. Null where the ratio has no table.
+  struct Radius {
+    double given;
+    double cut;
+    double squared;  // given^2, as the verifier squares D
+    const DiskBins* from_point;
+    std::vector<const DiskBins*> from_disk;
+    const DiskBins* point_from_here;
+  };
+  struct Disk {
+    Vec2 centre;
+    uint32_t radius;  // into radii_
+  };
+
+  // Fills arcs_ and near_ with the disks (but `skip`) whose cut circle may meet the circle of
+  // radius `circle` about `centre`; `tables[j]` sees radius j's disks from it. False: one holds
+  // it whole.
+  bool Around(Vec2 centre, double circle, const DiskBins* const* tables, size_t skip);
+  // Appends to arcs_ the arc of the circle (radius `circle`, table scale 16 / circle) that the
+  // disk of radius `disk_radius` at `offset` covers, by `table` or exactly. False: it holds the
+  // whole circle.
+  bool AddArc(Vec2 offset, double circle, double disk_radius, const DiskBins* table);
+
+  std::vector<Radius> radii_;
+  std::vector<Disk> disks_;  // by cell, then as given
+  double min_distance_, spacing_;
+  double largest_cut_ = 0.0;
+  // Disks filed in square cells of side largest_cut_: cell c holds disks
+  // [cell_start_[c], cell_start_[c + 1]).
+  Vec2 origin_;
+  double inverse_cell_ = 0.0;
+  int64_t columns_ = 0, rows_ = 0;
+  std::vector<uint32_t> cell_start_;
+  std::vector<const DiskBins*> from_point_;  // radii_[j].from_point, in one array
+  std::vector<DiskArc> arcs_;
+  std::vector<uint32_t> near_;  // disks remembered for Excludes
+};
+
+}  // namespace scallop
