@@ -59,6 +59,25 @@ void BM_PlaneCold(benchmark::State& state) {
 }
 BENCHMARK(BM_PlaneCold)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// A1 worlds cold, one thread, on a 192 d square (about 26k points). Density 2 is dart throwing
+// in every region (generator version 4); density 1.99 runs the paper's A1 (new points only
+// within r' of the set), which density 2 ran until version 4: the baseline of the same run.
+void BM_PlaneColdA1(benchmark::State& state) {
+  constexpr double kA1Side = 192.0;
+  const double density = static_cast<double>(state.range(0)) / 100.0;
+  int64_t points = 0;
+  uint64_t seed = 0;
+  for (auto _ : state) {
+    PlaneEngine engine(PlaneEngineOptions{.cache_bytes = int64_t{1} << 30, .threads = 1});
+    const World world =
+        *World::Create({.seed = ++seed, .algorithm = WorldAlgorithm::kA1, .density = density});
+    auto result = engine.Points(world, {0, 0, kA1Side, kA1Side});
+    points = static_cast<int64_t>(result->positions.size());
+  }
+  SetPointsPerSecond(state, points);
+}
+BENCHMARK(BM_PlaneColdA1)->Arg(200)->Arg(199)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // Warm: every region cached; the query filters and copies points out.
 void BM_PlaneWarm(benchmark::State& state) {
   PlaneEngineOptions options;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "scallop/random/rng.h"
+#include "scallop/sampling/sampler.h"
 #include "scallop/sampling/spacing.h"
 
 namespace scallop {
@@ -250,6 +251,90 @@ TEST(CellDartsTest, PlantedMissingCellIsCaught) {
     caught += SpotOfTOutside(run, planted, &spots_in_t).has_value();
   }
   EXPECT_EQ(caught, 10);
+}
+
+// Reach::kInStop, a plane region's run: R = [0, 12)^2 in its domain grown by 6.5 d, the half
+// plane x < 0 closed and covered by a bounded dart-throwing set there (its points within r' of
+// the open part fixed, the rest within reach of the domain inert). Brute force: every spot of T
+// (in the domain, outside the closed rectangle, within the taper's reach of R, s from every point)
+// lies in an open cell throughout the run; when Run returns, either no cell meets R and no spot
+// of R is available, or only finest cells meet R (the caller's neighbourhoods take over); the
+// points keep s from each other and from the fixed and inert points, and none is closed off.
+TEST(CellDartsTest, StoppedRegionRunsHoldTAndStopOnlyWhenTheRectangleIsCovered) {
+  const double d = 1.0, spacing = SpacingFor(d, 100.0), outer = 2 * d;
+  const Rect stop{0, 0, 12, 12};
+  const Rect domain = Grown(stop, 6.5);
+  const Rect closed{-30, -30, 0, 40};
+  int covered_runs = 0, probed_states = 0;
+  for (uint64_t seed = 1; seed <= 8; ++seed) {
+    // The covering set of the closed half, from a bounded exhaustive dart throwing near it.
+    SamplerOptions options;
+    options.algorithm = Algorithm::kDartThrowing;
+    options.dart_exhaustive = true;
+    options.domain = {{-9.0, -9.0, 0.0, 21.0}, false};
+    options.seed = seed;
+    StatusOr<std::vector<Vec2>> neighbours = Sample(options);
+    ASSERT_TRUE(neighbours.ok()) << neighbours.status().message();
+    std::vector<Vec2> fixed, inert;
+    for (const Vec2& p : *neighbours) {
+      if (SquaredDistance(domain, p) >= 2.02 * 2.02) continue;
+      (p.x >= -2.02 ? fixed : inert).push_back(p);
+    }
+    const std::vector<Rect> closed_rects = {closed};
+    for (const size_t stop_after : {size_t{20}, size_t{120}, SIZE_MAX}) {
+      CellDarts cells(domain, d, spacing, outer, {stop, closed_rects});
+      for (const Vec2& p : inert) cells.AddInertPoint(p);
+      for (const Vec2& p : fixed) cells.AddPoint(p);
+      std::vector<Vec2> placed;
+      Rng rng(seed);
+      cells.Run(rng, placed, stop_after);
+      CellsRun run{{domain, false}, spacing, outer, CellDarts::Reach::kAnywhere, placed, {}};
+      run.points.insert(run.points.end(), fixed.begin(), fixed.end());
+      run.points.insert(run.points.end(), inert.begin(), inert.end());
+      std::vector<Rect> meeting_stop;
+      cells.ForEachOpenCell([&](const Rect& c) { run.open.push_back(c); });
+      cells.ForEachOpenCell([&](const Rect& c) { meeting_stop.push_back(c); }, true);
+      SCOPED_TRACE(::testing::Message() << "seed " << seed << " placed " << placed.size());
+      // T: InT's spots (anywhere), minus the closed rectangle and beyond the taper's reach.
+      const Rect reach = Grown(stop, CellDarts::kTaperReach * d);
+      const double step = spacing / 8.0;
+      int spots_in_t = 0, spots_of_r = 0;
+      for (double y = domain.y0 + 0.37 * step; y < domain.y1; y += step) {
+        for (double x = domain.x0 + 0.61 * step; x < domain.x1; x += step) {
+          const Vec2 spot{x, y};
+          if (closed.Contains(spot) || !reach.Contains(spot) || !InT(run, spot)) continue;
+          ++spots_in_t;
+          ASSERT_TRUE(InSomeCell(run.open, spot)) << "spot " << x << ", " << y;
+          if (stop.Contains(spot)) {
+            ++spots_of_r;
+            ASSERT_TRUE(InSomeCell(meeting_stop, spot)) << "spot " << x << ", " << y;
+          }
+        }
+      }
+      probed_states += spots_in_t > 0;
+      if (stop_after == SIZE_MAX) {
+        if (cells.StopCovered()) {
+          ++covered_runs;
+          EXPECT_EQ(spots_of_r, 0);
+        } else {
+          const double finest = spacing / std::sqrt(2.0) / (1 << CellDarts::kFinestLevel);
+          for (const Rect& c : meeting_stop) EXPECT_LE(c.Width(), finest * 1.001);
+        }
+      }
+      for (size_t i = 0; i < placed.size(); ++i) {
+        EXPECT_TRUE(domain.Contains(placed[i]) && !closed.Contains(placed[i]));
+        EXPECT_TRUE(reach.Contains(placed[i]));
+        for (size_t j = 0; j < run.points.size(); ++j) {
+          if (j != i) {
+            ASSERT_GE(SquaredDistance(placed[i], run.points[j]), spacing * spacing);
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GE(probed_states, 16);  // stopped early, T is large: the probe had something to find
+  std::printf("stopped runs that covered their rectangle with cells alone: %d of 8\n",
+              covered_runs);
 }
 
 }  // namespace

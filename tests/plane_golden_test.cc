@@ -121,6 +121,17 @@ TEST(PlaneGoldenTest, RegionsOfAFixedWorldHaveTheirPinnedHashes) {
   }
 }
 
+// A1 at density 2 runs another sampler in its regions than below 2 (dart throwing with a
+// tapered band, CellDarts::Reach::kInStop; docs/design.md, "A1 world regions"): pinned apart.
+// Computed with kGeneratorVersion 4.
+constexpr uint64_t kA1DartThrowingGolden[] = {0x50d1021ecaa3da2fULL, 0xf6b58ff8d276f5acULL,
+                                              0x44913f57d35afd9eULL, 0xd759ca1a4fd561acULL};
+
+TEST(PlaneGoldenTest, A1DartThrowingRegionsHaveTheirPinnedHashes) {
+  ExpectPinnedHashes(ValidWorld({.seed = 2026, .algorithm = WorldAlgorithm::kA1, .density = 2.0}),
+                     "a1 density 2", kA1DartThrowingGolden);
+}
+
 // The golden test can fail: another seed, another d or another density gives
 // other hashes for every region (and the regions differ from each other).
 TEST(PlaneGoldenTest, OtherWorldsGiveOtherHashes) {

@@ -17,6 +17,7 @@
 #include "scallop/sampling/sampler.h"
 #include "scallop/sampling/sampling_problem.h"
 #include "scallop/sampling/scalloped_sampler.h"
+#include "tests/seed_statistics.h"
 
 namespace scallop {
 namespace {
@@ -46,20 +47,6 @@ constexpr int kBins = 30;
 // fixed seed set would have to be to fail on samplers that agree.
 constexpr double kRhoZ = 4.0;
 constexpr double kBinZ = 5.0;
-
-double Mean(const std::vector<double>& values) {
-  double sum = 0.0;
-  for (double v : values) sum += v;
-  return sum / static_cast<double>(values.size());
-}
-
-// Sample standard deviation (n - 1 in the denominator).
-double Spread(const std::vector<double>& values) {
-  const double mean = Mean(values);
-  double sum = 0.0;
-  for (double v : values) sum += (v - mean) * (v - mean);
-  return std::sqrt(sum / static_cast<double>(values.size() - 1));
-}
 
 // Per-seed measurements of one method.
 struct Measured {
@@ -141,16 +128,6 @@ Measured MeasurePapersA1(double density, int seeds = kSeeds) {
   return Measure(
       name, [&](uint64_t seed) { return SamplePapersA1(kTorus, density, A1Bulk::kCells, seed); },
       kTorus, seeds);
-}
-
-// The difference of two means in standard errors of that difference (Welch). Exactly equal
-// constant series (g below d is 0 for everyone) count as 0.
-double ZScore(const std::vector<double>& a, const std::vector<double>& b) {
-  const double difference = Mean(a) - Mean(b);
-  const double standard_error = std::sqrt(Spread(a) * Spread(a) / static_cast<double>(a.size()) +
-                                          Spread(b) * Spread(b) / static_cast<double>(b.size()));
-  if (difference == 0.0) return 0.0;
-  return standard_error > 0.0 ? std::abs(difference) / standard_error : INFINITY;
 }
 
 bool RhoAgrees(const Measured& a, const Measured& b) {

@@ -223,6 +223,25 @@ def infinite_plane(run):
     return "".join(out)
 
 
+def a1_worlds(run):
+    rows = medians(load_json("plane_bench.json"))
+    exact = rows.get("BM_PlaneColdA1/200/real_time")
+    paper = rows.get("BM_PlaneColdA1/199/real_time")
+    if not exact or not paper:
+        return MISSING
+    base = paper["points_per_second"]
+    return "".join([
+        command_block(run, "plane_bench"), "\n",
+        "A 192 d square of an A1 world (about 26k points), generated cold by a fresh one-thread\n"
+        "engine. Density 2 is dart throwing in every region (generator version 4, docs/design.md,\n"
+        "\"A1 world regions\"); density 1.99 runs the paper's A1 in its regions, as density 2 did\n"
+        "until version 4: the baseline. Target (issue 22): at least as fast as the baseline.\n\n",
+        "| world | points/s | ratio |\n", "|---|---|---|\n",
+        f"| the paper's A1 regions, density 1.99 (baseline) | {si(base)} | 1 |\n",
+        f"| **dart throwing regions**, density 2 | {si(exact['points_per_second'])} | "
+        f"**{ratio(exact['points_per_second'], base)}** |\n"])
+
+
 def text_section(run, key, description, keep=lambda line: bool(line.strip())):
     """A section that quotes the lines `keep` selects from KEY.txt, indented."""
     text = read_text(f"{key}.txt")
@@ -426,7 +445,8 @@ def main():
     sections = (("Bounded samplers", bounded_samplers), ("Radius fields, bounded", radius_fields),
                 ("Radius fields on the plane", radius_fields_on_the_plane),
                 ("Layered worlds", layered_worlds),
-                ("Infinite plane", infinite_plane), ("Cold tiles", cold_tiles),
+                ("Infinite plane", infinite_plane), ("A1 worlds", a1_worlds),
+                ("Cold tiles", cold_tiles),
                 ("Nearest lookups", nearest),
                 ("Nearest lookups on radius-field worlds", field_lookups), ("Deterministic math", deterministic_math),
                 ("Verifier", verifier), ("Follow: a walking player", follow),

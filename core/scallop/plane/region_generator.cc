@@ -92,7 +92,10 @@ std::vector<Vec2> SampleConstant(const World& world, const SamplingProblem& prob
                                  std::vector<bool>* unprocessed) {
   switch (world.algorithm()) {
     case WorldAlgorithm::kA1:
-      return SampleScalloped(problem, CandidateChoice::kByArea, rng);
+      // Exact dart throwing in the region at density 2 (CellDarts::Reach::kInStop); the
+      // paper's A1 below, where its restriction to r' is the point.
+      return SampleScalloped(problem, CandidateChoice::kByArea, rng, A1Bulk::kCells,
+                             world.density() == 2.0 ? A1Reach::kAnywhere : A1Reach::kNearPoints);
     case WorldAlgorithm::kA2:
       return SampleScalloped(problem, CandidateChoice::kUniform, rng);
     case WorldAlgorithm::kA3:

@@ -18,7 +18,7 @@ CellDarts::CellDarts(const Domain& domain, double min_distance, double spacing, 
     : domain_(domain.rect),
       torus_(domain.torus),
       reach_kind_(reach),
-      reach_(reach == Reach::kAnywhere ? spacing : outer_radius),
+      reach_(reach == Reach::kNearPoints ? outer_radius : spacing),
       spacing_(spacing),
       spacing_squared_(spacing * spacing),
       covered_squared_(spacing * spacing * (1.0 - kCoverageMargin)),
@@ -29,8 +29,12 @@ CellDarts::CellDarts(const Domain& domain, double min_distance, double spacing, 
       cell_size_(min_distance / std::sqrt(2.0) * (1.0 - 1e-9)),
       columns_(static_cast<int64_t>(std::floor(domain.rect.Width() / cell_size_)) + 1),
       rows_(static_cast<int64_t>(std::floor(domain.rect.Height() / cell_size_)) + 1),
-      // On a torus the images filed across the edges lie within s of the rectangle.
-      grid_(domain.rect, min_distance, domain.torus ? spacing : 0.0) {
+      // On a torus the images filed across the edges lie within s of the rectangle; a plane
+      // region's fixed and inert points within 2 r' (and 1%) of it.
+      grid_(domain.rect, min_distance,
+            domain.torus              ? spacing
+            : reach == Reach::kInStop ? 2 * outer_radius + spacing
+                                      : 0.0) {
   const auto cells = static_cast<size_t>(columns_ * rows_);
   state_.assign(cells, kUntouched);
   corners_.assign(cells, 0);
@@ -50,6 +54,68 @@ CellDarts::CellDarts(const Domain& domain, double min_distance, double spacing, 
       }
     }
   }
+}
+
+CellDarts::CellDarts(const Rect& domain, double min_distance, double spacing, double outer_radius,
+                     const StoppedProblem& stopped)
+    : CellDarts(Domain{domain, false}, min_distance, spacing, outer_radius, Reach::kInStop) {
+  has_stop_ = true;
+  stop_ = stopped.stop;
+  closed_.assign(stopped.closed.begin(), stopped.closed.end());
+  taper_per_distance_ = 1.0 / (kTaperReach * min_distance);
+  // Every cell that may hold a spot of T (within the taper's reach of R, outside the closed
+  // rectangles) is open from the start; points only cover.
+  const Rect reach = Grown(stop_, kTaperReach * min_distance);
+  for (int32_t id = 0; id < static_cast<int32_t>(state_.size()); ++id) {
+    const Rect cell = InDomain(TopCell(id));
+    const bool meets_reach =
+        cell.x0 < reach.x1 && reach.x0 < cell.x1 && cell.y0 < reach.y1 && reach.y0 < cell.y1;
+    if (cell.x0 < cell.x1 && cell.y0 < cell.y1 && meets_reach && !WhollyInClosedRect(cell)) {
+      Open(id);
+    } else {
+      state_[static_cast<size_t>(id)] = kClosed;
+    }
+  }
+}
+
+CellDarts::Group CellDarts::GroupOf(const Rect& cell) const {
+  const bool meets = has_stop_ && cell.x0 <= stop_.x1 && stop_.x0 <= cell.x1 &&
+                     cell.y0 <= stop_.y1 && stop_.y0 <= cell.y1;
+  return meets ? kMeetsStop : kOther;
+}
+
+void CellDarts::PushSubCell(int level, double x, double y) {
+  const Group group = GroupOf(InDomain({x, y, x + side_[level], y + side_[level]}));
+  sub_[static_cast<size_t>(level)][group].push_back({x, y, 0});
+}
+
+void CellDarts::RemoveSubCell(int level, int group, size_t index) {
+  std::vector<SubCell>& cells = sub_[static_cast<size_t>(level)][group];
+  cells[index] = cells.back();
+  cells.pop_back();
+}
+
+double CellDarts::OpenArea(int group, int levels) const {
+  double area = 0.0;
+  for (int level = 0; level < levels; ++level) {
+    area += static_cast<double>(OpenCount(level, group)) * area_[level];
+  }
+  return area;
+}
+
+bool CellDarts::InClosedRect(Vec2 p) const {
+  for (const Rect& r : closed_) {
+    if (r.Contains(p)) return true;
+  }
+  return false;
+}
+
+bool CellDarts::WhollyInClosedRect(const Rect& cell) const {
+  // Strictly below the high edges: the rectangles are half-open.
+  for (const Rect& r : closed_) {
+    if (r.x0 <= cell.x0 && cell.x1 < r.x1 && r.y0 <= cell.y0 && cell.y1 < r.y1) return true;
+  }
+  return false;
 }
 
 Rect CellDarts::InDomain(const Rect& cell) const {
@@ -74,17 +140,19 @@ int32_t CellDarts::TopCellId(Vec2 p) const {
 void CellDarts::Open(int32_t id) {
   const auto i = static_cast<size_t>(id);
   state_[i] = kOpen;
-  where_[i] = static_cast<int32_t>(open_.size());
-  open_.push_back(id);
+  std::vector<int32_t>& open = open_[TopGroup(id)];
+  where_[i] = static_cast<int32_t>(open.size());
+  open.push_back(id);
 }
 
 void CellDarts::Close(int32_t id) {
   const auto i = static_cast<size_t>(id);
   if (state_[i] == kOpen) {
-    const int32_t last = open_.back();
-    open_[static_cast<size_t>(where_[i])] = last;
+    std::vector<int32_t>& open = open_[TopGroup(id)];
+    const int32_t last = open.back();
+    open[static_cast<size_t>(where_[i])] = last;
     where_[static_cast<size_t>(last)] = where_[i];
-    open_.pop_back();
+    open.pop_back();
   }
   state_[i] = kClosed;
 }
@@ -171,9 +239,12 @@ bool CellDarts::Covered(const Rect& cell, std::span<const Vec2> disks) const {
 
 void CellDarts::AddPoint(Vec2 p) {
   grid_.Insert(-1, p);
-  const int32_t own = TopCellId(p);
-  // A point in a split cell leaves its children open: darts there miss and retire them.
-  if (state_[static_cast<size_t>(own)] != kSplit) Close(own);
+  // A point in a split cell leaves its children open: darts there miss and retire them. (A
+  // plane region's fixed point may lie outside the domain: no cell of its own.)
+  if (domain_.x0 <= p.x && p.x <= domain_.x1 && domain_.y0 <= p.y && p.y <= domain_.y1) {
+    const int32_t own = TopCellId(p);
+    if (state_[static_cast<size_t>(own)] != kSplit) Close(own);
+  }
   UpdateCellsAround(p);
   if (!torus_) return;
   // The images whose s-disk reaches into the rectangle (those across an edge and, near a
@@ -236,31 +307,27 @@ void CellDarts::UpdateCellsAround(Vec2 p) {
   }
 }
 
-void CellDarts::Missed(int level, size_t index) {
+void CellDarts::Missed(int level, int group, size_t index) {
   Rect cell;
   if (level == 0) {
-    const int32_t id = open_[index];
+    const int32_t id = open_[group][index];
     if (++failures_[static_cast<size_t>(id)] < kFailuresToSplit) return;
     cell = TopCell(id);
     Close(id);
     state_[static_cast<size_t>(id)] = kSplit;
     GatherDisks(cell);
   } else {
-    std::vector<SubCell>& cells = sub_[static_cast<size_t>(level)];
+    std::vector<SubCell>& cells = sub_[static_cast<size_t>(level)][group];
     SubCell& sub = cells[index];
     if (++sub.failures % kFailuresToSplit != 0) return;
     cell = {sub.x, sub.y, sub.x + side_[level], sub.y + side_[level]};
     GatherDisks(cell);
     if (level == kFinestLevel) {
       // The finest cells are not split: retested now and then, else left to the caller.
-      if (Covered(InDomain(cell))) {
-        sub = cells.back();
-        cells.pop_back();
-      }
+      if (Covered(InDomain(cell))) RemoveSubCell(level, group, index);
       return;
     }
-    sub = cells.back();
-    cells.pop_back();
+    RemoveSubCell(level, group, index);
   }
   const double half = 0.5 * (cell.x1 - cell.x0);
   for (int quarter = 0; quarter < 4; ++quarter) {
@@ -268,12 +335,13 @@ void CellDarts::Missed(int level, size_t index) {
     const double y = cell.y0 + ((quarter & 2) ? half : 0.0);
     if (x >= domain_.x1 || y >= domain_.y1) continue;  // wholly outside the domain
     const Rect child = InDomain({x, y, x + half, y + half});
+    if (has_stop_ && WhollyInClosedRect(child)) continue;
     // Only the disks that reach the child: the crossing test is cubic in their number.
     child_disks_.clear();
     for (const Vec2& disk : disks_) {
       if (SquaredDistance(child, disk) < spacing_squared_) child_disks_.push_back(disk);
     }
-    if (!Covered(child, child_disks_)) sub_[static_cast<size_t>(level + 1)].push_back({x, y, 0});
+    if (!Covered(child, child_disks_)) PushSubCell(level + 1, x, y);
   }
 }
 
@@ -282,37 +350,53 @@ void CellDarts::Run(Rng& rng, std::vector<Vec2>& placed, size_t max_points) {
   constexpr int64_t kMaxMissesInARow = 1 << 20;
   int64_t misses_in_a_row = 0;
   while (placed.size() < max_points) {
-    double coarse = static_cast<double>(open_.size()) * area_[0];
-    for (int level = 1; level < kFinestLevel; ++level) {
-      coarse += static_cast<double>(sub_[static_cast<size_t>(level)].size()) * area_[level];
+    // Which groups darts go to: both, or (kInStop) R's cells alone once they hold little of the
+    // open area. kInStop hands over when only finest cells meet R.
+    int first_group = 0, end_group = kGroups;
+    if (has_stop_) {
+      if (OpenArea(kMeetsStop, kFinestLevel) == 0.0) return;
+      const double near = OpenArea(kMeetsStop, kFinestLevel + 1);
+      if (near < kSliverShare * (near + OpenArea(kOther, kFinestLevel + 1))) end_group = 1;
+    } else {
+      double coarse = 0.0;
+      for (int group = 0; group < kGroups; ++group) coarse += OpenArea(group, kFinestLevel);
+      if (!(coarse > 0.0)) return;
     }
-    if (!(coarse > 0.0)) return;
-    const double total =
-        coarse + static_cast<double>(sub_[kFinestLevel].size()) * area_[kFinestLevel];
-    // A level by its open area, then a cell of it uniformly, then a spot of the cell.
+    double total = 0.0;
+    for (int group = first_group; group < end_group; ++group) {
+      total += OpenArea(group, kFinestLevel + 1);
+    }
+    // A level and group by open area, then a cell of it uniformly, then a spot of the cell.
     double target = rng.Uniform() * total;
-    int level = 0;
-    for (; level < kFinestLevel; ++level) {
-      const size_t count = level == 0 ? open_.size() : sub_[static_cast<size_t>(level)].size();
-      const double area = static_cast<double>(count) * area_[level];
-      if (target < area) break;
-      target -= area;
+    int level = 0, group = first_group;
+    for (;; ++level) {
+      bool found = false;
+      for (group = first_group; group < end_group; ++group) {
+        const double area = static_cast<double>(OpenCount(level, group)) * area_[level];
+        if (target < area) {
+          found = true;
+          break;
+        }
+        target -= area;
+      }
+      if (found || level == kFinestLevel) break;
     }
-    const size_t count = level == 0 ? open_.size() : sub_[static_cast<size_t>(level)].size();
+    if (group == end_group) group = end_group - 1;  // rounding in the running subtraction
+    const size_t count = OpenCount(level, group);
     if (count == 0) continue;  // rounding in the running subtraction: draw again
     const size_t index = rng.Below(count);
     Rect cell;
     if (level == 0) {
-      cell = TopCell(open_[index]);
+      cell = TopCell(open_[group][index]);
     } else {
-      const SubCell& sub = sub_[static_cast<size_t>(level)][index];
+      const SubCell& sub = sub_[static_cast<size_t>(level)][group][index];
       cell = {sub.x, sub.y, sub.x + side_[level], sub.y + side_[level]};
     }
     const double u = rng.Uniform();
     const Vec2 dart{cell.x0 + u * side_[level], cell.y0 + rng.Uniform() * side_[level]};
-    // Outside the domain is a miss too: a cell mostly outside it is then split, and its
-    // children wholly outside are dropped.
-    const bool inside = domain_.Contains(dart);
+    // Outside the domain (or in a closed rectangle) is a miss too: a cell mostly outside it is
+    // then split, and its children wholly outside are dropped.
+    const bool inside = domain_.Contains(dart) && !(has_stop_ && InClosedRect(dart));
     // In T: no point within s (most darts stop here), and with kNearPoints one within r'.
     // GatherNear keeps exactly the points closer than its limit, so the counts answer both.
     const bool available =
@@ -321,16 +405,17 @@ void CellDarts::Run(Rng& rng, std::vector<Vec2>& placed, size_t max_points) {
     // isolates such spots, which the caller's neighbourhoods finish like any other.
     if (!available || (reach_kind_ == Reach::kNearPoints &&
                        grid_.GatherNear(dart, outer_radius_, outer_squared_, -1, nearby_) == 0)) {
-      Missed(level, index);
+      Missed(level, group, index);
       if (++misses_in_a_row == kMaxMissesInARow) return;
       continue;
     }
     misses_in_a_row = 0;
-    if (level > 0) {
-      std::vector<SubCell>& cells = sub_[static_cast<size_t>(level)];
-      cells[index] = cells.back();
-      cells.pop_back();
+    // kInStop past R: an available spot, kept at the taper's rate (a dart not kept is no miss).
+    if (has_stop_) {
+      const double outside = std::sqrt(SquaredDistance(stop_, dart)) * taper_per_distance_;
+      if (outside > 0.0 && !(rng.Uniform() < Taper(outside))) continue;
     }
+    if (level > 0) RemoveSubCell(level, group, index);
     AddPoint(dart);
     placed.push_back(dart);
   }

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "scallop/geometry/scalloped_region.h"
 #include "scallop/sampling/area_sum_tree.h"
@@ -39,6 +40,7 @@ class ScallopedSampler {
         choice_(choice),
         bulk_(bulk),
         anywhere_(choice == CandidateChoice::kByArea && reach == A1Reach::kAnywhere),
+        in_stop_(anywhere_ && problem.stop_when_covered.has_value()),
         rng_(rng),
         outer_radius_(problem.density * problem.min_distance),
         spacing_(
@@ -61,8 +63,9 @@ class ScallopedSampler {
     for (;;) {
       // Every available spot within r' of a point lies in some neighbourhood,
       // and F1 is continuous, so once no neighbourhood that can reach the
-      // stop rectangle is left, the rectangle is covered.
-      if (problem_.stop_when_covered && open_near_stop_ == 0) break;
+      // stop rectangle is left, the rectangle is covered. (A plane region's
+      // dart throwing keeps neighbourhoods in R alone: it ends with them.)
+      if (!in_stop_ && problem_.stop_when_covered && open_near_stop_ == 0) break;
       const int32_t chosen = ChooseCandidate();
       if (chosen < 0) break;
       DrawFrom(chosen);
@@ -87,10 +90,31 @@ class ScallopedSampler {
   // The same process as AddPoint and DrawFrom, with cells for all but its last voids: the
   // points CellDarts places get no neighbourhood, and once it stops, the points within r' of
   // its open cells (which hold every spot still available and reachable) get theirs, exactly as
-  // AddPoint and the cuts since would have left them.
+  // AddPoint and the cuts since would have left them. A plane region (in_stop_) files its
+  // neighbours' points first, and is done if the cells find R covered; else R's last voids go
+  // to the neighbourhoods of the points within r' of the open cells meeting R, clipped to R
+  // (every available spot of R is within r' of a point by then: the argument of cell_darts.h),
+  // and points placed from them need none (the earlier owners' disks hold what they reach).
   void RunCells() {
-    CellDarts cells(problem_.domain, problem_.min_distance, spacing_, outer_radius_,
-                    anywhere_ ? CellDarts::Reach::kAnywhere : CellDarts::Reach::kNearPoints);
+    std::optional<CellDarts> maybe_cells;
+    if (in_stop_) {
+      maybe_cells.emplace(
+          problem_.domain.rect, problem_.min_distance, spacing_, outer_radius_,
+          CellDarts::StoppedProblem{*problem_.stop_when_covered, problem_.covered_rects});
+    } else {
+      maybe_cells.emplace(problem_.domain, problem_.min_distance, spacing_, outer_radius_,
+                          anywhere_ ? CellDarts::Reach::kAnywhere : CellDarts::Reach::kNearPoints);
+    }
+    CellDarts& cells = *maybe_cells;
+    for (const Vec2& p : problem_.inert_points) {
+      points_.push_back(p);
+      cells.AddInertPoint(p);
+    }
+    for (const Vec2& p : problem_.fixed_points) {
+      points_.push_back(p);
+      cells.AddPoint(p);
+    }
+    fixed_count_ = points_.size();
     // Near points only, the set grows from one uniform point; anywhere, the first dart is one.
     std::vector<Vec2> placed;
     if (!anywhere_) {
@@ -98,46 +122,63 @@ class ScallopedSampler {
       cells.AddPoint(placed[0]);
     }
     cells.Run(rng_, placed);
-    points_.reserve(placed.size());
-    for (const Vec2& p : placed) {
-      const auto index = static_cast<int32_t>(points_.size());
-      points_.push_back(p);
-      grid_.Insert(index, p);
-    }
+    points_.insert(points_.end(), placed.begin(), placed.end());
+    for (size_t i = 0; i < points_.size(); ++i) grid_.Insert(static_cast<int32_t>(i), points_[i]);
     neighbourhoods_.resize(points_.size());
     open_near_stop_flags_.resize(points_.size(), 0);
+    if (in_stop_ && cells.StopCovered()) return;
     std::vector<uint8_t> near_open(points_.size(), 0);
-    cells.ForEachOpenCell([&](const Rect& cell) {
-      const Vec2 centre{0.5 * (cell.x0 + cell.x1), 0.5 * (cell.y0 + cell.y1)};
-      grid_.ForEachNear(centre, outer_radius_ + cell.Width(), [&](int32_t index, Vec2 q) {
-        if (SquaredDistance(cell, q) <= outer_radius_ * outer_radius_)
-          near_open[static_cast<size_t>(index)] = 1;
-      });
-    });
+    cells.ForEachOpenCell(
+        [&](const Rect& cell) {
+          const Vec2 centre{0.5 * (cell.x0 + cell.x1), 0.5 * (cell.y0 + cell.y1)};
+          grid_.ForEachNear(centre, outer_radius_ + cell.Width(), [&](int32_t index, Vec2 q) {
+            if (SquaredDistance(cell, q) <= outer_radius_ * outer_radius_)
+              near_open[static_cast<size_t>(index)] = 1;
+          });
+        },
+        in_stop_);
+    if (in_stop_) owners_ = near_open;
     for (size_t i = 0; i < points_.size(); ++i) {
       if (near_open[i]) BuildNeighbourhood(static_cast<int32_t>(i));
     }
   }
 
+  // Whether the point at `index` has a neighbourhood: always, but in a plane region's dart
+  // throwing only the owners RunCells chose.
+  bool OwnsNeighbourhood(int32_t index) const {
+    return !in_stop_ || (static_cast<size_t>(index) < owners_.size() &&
+                         owners_[static_cast<size_t>(index)] != 0);
+  }
+
+  // The disk a point at `index` cuts from the neighbourhood of a later point: r' when it has a
+  // neighbourhood of its own (the spots within r' of both are its), else only its s-disk.
+  double EarlierDiskRadius(int32_t index) const {
+    return OwnsNeighbourhood(index) ? outer_radius_ : spacing_;
+  }
+
   // N_index as AddPoint made it and every later point's cut has left it: the annulus minus the
-  // r'-disks of earlier points and the s-disks of later ones, nearest first.
+  // r'-disks of earlier points (EarlierDiskRadius) and the s-disks of later ones, nearest first.
   void BuildNeighbourhood(int32_t index) {
     const Vec2 x = points_[static_cast<size_t>(index)];
     ScallopedRegion& region = scratch_region_;
     region.AssignMoved(annulus_, x);
-    if (!problem_.domain.torus) ClipToDomain(region);
+    if (in_stop_) {
+      ClipTo(region, *problem_.stop_when_covered);
+    } else if (!problem_.domain.torus) {
+      ClipTo(region, problem_.domain.rect);
+    }
     nearby_.clear();
-    const double reach = outer_radius_ + spacing_;
     grid_.ForEachNear(x, 2 * outer_radius_, [&](int32_t other, Vec2 q) {
       if (other == index) return;
       const double distance_squared = SquaredDistance(q, x);
-      const double limit = other < index ? 2 * outer_radius_ : reach;
+      const double radius = other < index ? EarlierDiskRadius(other) : spacing_;
+      const double limit = outer_radius_ + radius;
       if (distance_squared < limit * limit) nearby_.push_back({distance_squared, other, q});
     });
     SortNearestFirst(nearby_);
     for (const Nearby& n : nearby_) {
       if (region.empty()) break;
-      region.SubtractDisk(n.position, n.index < index ? outer_radius_ : spacing_);
+      region.SubtractDisk(n.position, n.index < index ? EarlierDiskRadius(n.index) : spacing_);
     }
     neighbourhoods_[static_cast<size_t>(index)] = region.empty() ? ScallopedRegion() : region;
     SetNeighbourhoodArea(index);
@@ -151,7 +192,7 @@ class ScallopedSampler {
       // choice by area reaches only after most of the domain: once they are
       // all that is left there, they go first.
       const double near_stop = near_stop_areas_.Total();
-      if (near_stop > 0.0 && near_stop < kSliverShare * areas_.Total()) {
+      if (!in_stop_ && near_stop > 0.0 && near_stop < kSliverShare * areas_.Total()) {
         return static_cast<int32_t>(near_stop_areas_.Pick(rng_.Uniform()));
       }
       return static_cast<int32_t>(areas_.Pick(rng_.Uniform()));
@@ -201,7 +242,7 @@ class ScallopedSampler {
     // its final, usually small, size.
     ScallopedRegion& region = scratch_region_;
     region.AssignMoved(annulus_, x);
-    if (!problem_.domain.torus) ClipToDomain(region);
+    if (!problem_.domain.torus) ClipTo(region, problem_.domain.rect);
     // Earlier points own what lies within r' of them; x's s-disk leaves their
     // neighbourhoods.
     nearby_.clear();
@@ -219,12 +260,14 @@ class ScallopedSampler {
       }
     });
     CutNeighbourhoods(x);
+    // A plane region's dart throwing gives its last points none (RunCells).
+    const bool opens = !in_stop_;
     SortNearestFirst(nearby_);
     for (const Nearby& n : nearby_) {
-      if (region.empty()) break;
+      if (region.empty() || !opens) break;
       region.SubtractDisk(n.position, outer_radius_);
     }
-    neighbourhoods_.push_back(region.empty() ? ScallopedRegion() : region);
+    neighbourhoods_.push_back(region.empty() || !opens ? ScallopedRegion() : region);
     open_near_stop_flags_.push_back(0);
     if (choice_ == CandidateChoice::kUniform) candidates_.push_back(index);
     SetNeighbourhoodArea(index);
@@ -257,8 +300,7 @@ class ScallopedSampler {
     SetNeighbourhoodArea(index);
   }
 
-  void ClipToDomain(ScallopedRegion& region) const {
-    const Rect& r = problem_.domain.rect;
+  void ClipTo(ScallopedRegion& region, const Rect& r) const {
     region.IntersectHalfPlane({1, 0}, r.x1);
     region.IntersectHalfPlane({-1, 0}, -r.x0);
     region.IntersectHalfPlane({0, 1}, r.y1);
@@ -310,7 +352,9 @@ class ScallopedSampler {
   const SamplingProblem& problem_;
   const CandidateChoice choice_;
   const A1Bulk bulk_;
-  const bool anywhere_;  // A1Reach::kAnywhere
+  const bool anywhere_;          // A1Reach::kAnywhere
+  const bool in_stop_;           // ... on a plane region: CellDarts::Reach::kInStop
+  std::vector<uint8_t> owners_;  // in_stop_: the points that have a neighbourhood
   Rng& rng_;
   const double outer_radius_;  // r'
   const double spacing_;       // s: d plus the rounding margin

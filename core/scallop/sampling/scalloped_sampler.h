@@ -34,8 +34,10 @@ enum class A1Reach {
   kNearPoints,
   // All of them, near and far: dart throwing run to exhaustion, exactly. Cells for the bulk
   // (CellDarts with every cell open), neighbourhoods for the last voids, which by then all lie
-  // within r' of a point. REQUIRES: density 2, A1Bulk::kCells, and a plain problem (a
-  // rectangle or torus with no fixed or inert points, covered or stop rectangles).
+  // within r' of a point. On a plane region's problem (a stop rectangle R, fixed and inert
+  // points, covered rectangles; no torus): dart throwing in R with a rate that tapers past it,
+  // until R is covered (CellDarts::Reach::kInStop; docs/design.md, "A1 world regions").
+  // REQUIRES: density 2 and A1Bulk::kCells.
   kAnywhere,
 };
 
