@@ -32,7 +32,7 @@ fi
 
 targets=(samplers_bench field_bench plane_bench nearest_bench deterministic_math_bench
   follow_bench cold_tile_latency load_generator null_server scallopd delaunay_verifier_test
-  http_tiles_bench nginx_tiles_bench wire_bench layers_bench soak_load)
+  http_tiles_bench nginx_tiles_bench wire_bench layers_bench soak_load warm_answer_bench)
 if [[ ${SKIP_BUILD:-0} != 1 ]]; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$build" -j2 --target "${targets[@]}"
@@ -62,6 +62,7 @@ if ((quick)); then
   bench deterministic_math_bench --benchmark_filter='Atan2' --benchmark_min_time=0.01
   FOLLOW_BENCH_WALK_D=64 bench follow_bench
   bench wire_bench --benchmark_min_time=0.01
+  bench warm_answer_bench --benchmark_min_time=0.01
   tiles=10
   load_env=(DURATION=1 REQUESTS=50 STREAMS=1 REPEATS=1)
   http_tiles_args=(0 2 1 1 1)
@@ -76,6 +77,7 @@ else
   bench deterministic_math_bench
   bench follow_bench
   bench wire_bench --benchmark_min_time=0.2
+  bench warm_answer_bench --benchmark_enable_random_interleaving=true
   tiles=400
   load_env=(DURATION=10 STREAMS="1 4" REPEATS=3)
   http_tiles_args=(1 16 4 1 9)

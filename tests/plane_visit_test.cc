@@ -59,6 +59,49 @@ TEST(PlaneVisitTest, PagesEqualSlicesOfTheBruteForceOrder) {
   }
 }
 
+// Whole pages take the branch-free filter for every region the rectangle
+// cuts (VisitPointsInside); its edges are put on points' own coordinates,
+// so the half-open rule ([x0, x1) x [y0, y1)) decides points on them.
+TEST(PlaneVisitTest, WholePagesKeepExactlyThePointsOfTheHalfOpenRectangle) {
+  PlaneEngine engine({.threads = 1});
+  Rng rng(78);
+  int on_edges = 0;  // points lying on the rectangles' edges, kept or not
+  for (int trial = 0; trial < 40; ++trial) {
+    const World world = ValidWorld({.seed = rng.NextBits(), .min_distance = rng.Uniform(0.1, 3)});
+    const double d = world.min_distance();
+    const Vec2 corner{rng.Uniform(-500, 500) * d, rng.Uniform(-500, 500) * d};
+    const Vec2 size{rng.Uniform(0.5, 70) * d, rng.Uniform(0.5, 70) * d};
+    StatusOr<PlanePoints> around =
+        engine.Points(world, {corner.x, corner.y, corner.x + size.x, corner.y + size.y});
+    ASSERT_TRUE(around.ok()) << around.status().message();
+    ASSERT_GE(around->positions.size(), 2u) << "trial " << trial;
+    // Edges through two of the rectangle's points: x0 and y0 from one, x1 and y1 from another.
+    const Vec2 low = around->positions[rng.Below(around->positions.size())];
+    const Vec2 high = around->positions[rng.Below(around->positions.size())];
+    const Rect rect{std::min(low.x, high.x), std::min(low.y, high.y),
+                    std::max(low.x, high.x) + (low.x == high.x ? d : 0),
+                    std::max(low.y, high.y) + (low.y == high.y ? d : 0)};
+    StatusOr<std::vector<RegionHandle>> regions = engine.Regions(world, rect);
+    ASSERT_TRUE(regions.ok()) << regions.status().message();
+    const Slice expected = BruteForce(*regions, rect);
+    Slice got;
+    const size_t counted =
+        VisitPoints(*regions, RegionLayout(d), rect, 0, SIZE_MAX, [&](const Vec2& p, uint64_t id) {
+          got.positions.push_back(p);
+          got.ids.push_back(id);
+        });
+    EXPECT_EQ(counted, expected.ids.size()) << "trial " << trial;
+    EXPECT_EQ(got.ids, expected.ids) << "trial " << trial;
+    EXPECT_EQ(got.positions, expected.positions) << "trial " << trial;
+    for (const RegionHandle& region : *regions) {
+      for (const Vec2& p : region->points) {
+        on_edges += p.x == rect.x0 || p.x == rect.x1 || p.y == rect.y0 || p.y == rect.y1;
+      }
+    }
+  }
+  EXPECT_GE(on_edges, 40);  // the edges were tested, not only the insides
+}
+
 TEST(PlaneVisitTest, CachedRegionsNeverGenerates) {
   PlaneEngine engine({.threads = 1});
   const World world = ValidWorld({.seed = 3});

@@ -75,7 +75,11 @@ class PointsAppender {
   uint64_t* ids_;
   const RadiusField* field_;
   double* radii_ = nullptr;
-  size_t count_ = 0;
+  // Not size_t: a store to ids_ (uint64_t, the same type as size_t here) could
+  // alias it, so GCC reloaded and stored it between points, and a warm tile's
+  // copy waited on that chain (bench/warm_answer_bench.cc). A message holds
+  // fewer than 2^31 points.
+  uint32_t count_ = 0;
 };
 
 // The message's points appended to `points`, and its radii to `radii` when

@@ -357,6 +357,25 @@ def service_load(run):
         keep=lambda line: bool(line.strip()) and not line.startswith("#"))
 
 
+def warm_answer(run):
+    rows = medians(load_json("warm_answer_bench.json"))
+    control, ours = rows.get("BM_WarmAnswerControl"), rows.get("BM_WarmAnswer")
+    if not (control and ours):
+        return MISSING
+    c, o = control["points_per_second"], ours["points_per_second"]
+    return "".join([
+        command_block(run, "warm_answer_bench"), "\n",
+        "What a warm GetPoints costs scallopd before gRPC serializes it: 256 random 64 d tiles\n"
+        "of a warm 256 d square (the load benchmark's warm mode), each tile's cached regions\n"
+        "copied into a packed `Points` message as `AnswerGetPoints` does, by `VisitPoints`\n"
+        "(a branch-free filter of the regions the tile cuts) against the control in the same\n"
+        "run: the same copy with a branch a point, as `VisitPoints` filtered before. CPU time,\n"
+        "points a second of the answers.\n\n",
+        "| copy | points/s | ns / point | against the control |\n", "|---|---|---|---|\n",
+        f"| a branch a point (control) | {si(c)} | {1e9 / c:.2f} | 1 |\n",
+        f"| **`VisitPoints`** | {si(o)} | {1e9 / o:.2f} | **{ratio(o, c)}** |\n"])
+
+
 def http_tiles(run):
     return text_section(
         run, "http_tiles",
@@ -451,6 +470,7 @@ def main():
                 ("Nearest lookups on radius-field worlds", field_lookups), ("Deterministic math", deterministic_math),
                 ("Verifier", verifier), ("Follow: a walking player", follow),
                 ("Service under load", service_load),
+                ("The warm answer's copy", warm_answer),
                 ("HTTP tiles against GetPoints", http_tiles),
                 ("Tiles through nginx's cache", nginx_tiles),
                 ("The wire encodings", wire_encodings),
