@@ -186,10 +186,10 @@ def layered_worlds(run):
         line("studios' pruned passes", studio), "\n",
         "Against the one-layer world the three layers ",
         "meet" if layered["points_per_second"] >= 0.5 * uniform["points_per_second"] else "miss",
-        " the 0.5x target, and against the studios' passes they are ",
+        " the 0.5x target,\nand against the studios' passes they are ",
         ratio(layered["points_per_second"], studio["points_per_second"]),
-        " as fast. Constant later layers grow by A3 with the earlier layers' points as exclusion\n"
-        "disks (docs/design.md, \"Layered worlds\").\n"])
+        " as fast. Constant later layers grow by A3 with\nthe earlier layers' points as exclusion"
+        " disks (docs/design.md, \"Layered worlds\").\n"])
 
 
 def infinite_plane(run):
