@@ -1,8 +1,10 @@
 // A3's candidate boundary by bins (arc_bins.h, candidate_boundary.h) against
 // brute force: the bins of an arc and of a neighbour's table cell hold for
 // the keys A3 computes, and building a boundary by bins leaves exactly the
-// ranges that cutting every arc leaves. Each check is shown to catch a
-// planted fault.
+// ranges that cutting every arc leaves. The same for a layered world's
+// exclusion disks (boundary_exclusions.h): the second intersection rule
+// against distances, DiskBins' tables, and the cuts. Each check is shown to
+// catch a planted fault.
 #include "scallop/sampling/candidate_boundary.h"
 
 #include <gtest/gtest.h>
@@ -16,6 +18,8 @@
 #include "scallop/sampling/arc_bins.h"
 #include "scallop/sampling/available_boundary.h"
 #include "scallop/sampling/boundary_arcs.h"
+#include "scallop/sampling/boundary_exclusions.h"
+#include "scallop/sampling/spacing.h"
 
 namespace scallop {
 namespace {
@@ -230,7 +234,7 @@ TEST(CandidateBoundaryTest, BuildLeavesTheRangesOfCuttingEveryArc) {
     AvailableBoundary built;
     for (int trial = 0; trial < 20000; ++trial) {
       const Scene scene = RandomScene(rng, spacing);
-      builder.Build(scene.centre, scene.other_arcs, {}, scene.neighbours, built);
+      builder.Build(scene.centre, scene.other_arcs, scene.neighbours, built);
       const AvailableBoundary expected = CutEveryArc(scene, spacing);
       ASSERT_TRUE(SameRanges(built, expected)) << "trial " << trial << " spacing " << spacing;
       empty += built.empty();
@@ -252,9 +256,145 @@ TEST(CandidateBoundaryTest, ComparisonCatchesAPlantedMissingArc) {
     const Scene scene = RandomScene(rng, 1.0);
     if (scene.neighbours.empty()) continue;
     ++tried;
-    builder.Build(scene.centre, scene.other_arcs, {}, scene.neighbours, built);
+    builder.Build(scene.centre, scene.other_arcs, scene.neighbours, built);
     caught += !SameRanges(built, CutEveryArc(scene, 1.0, rng.Below(scene.neighbours.size())));
   }
+  EXPECT_GT(caught, tried / 4);
+}
+
+// The second intersection rule against distances: on the circle of radius rho about c, a spot
+// well inside the disk (radius sigma about c + o) lies on the computed arc, one well outside
+// does not; kWhole and kNone agree with every spot.
+TEST(DiskArcTest, CoveredArcOfCircleAgreesWithDistances) {
+  Rng rng(21);
+  int arcs = 0, wholes = 0, nones = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double rho = std::pow(10.0, rng.Uniform(-2, 2));
+    const double sigma = rho * rng.Uniform(0.1, 3.0);
+    const double angle = rng.Uniform(0, 7);
+    double length = rng.Uniform(0, 1.2 * (rho + sigma));
+    if (trial % 5 == 0) length = (rho + sigma) * (1 - std::pow(10.0, -rng.Uniform(1, 12)));
+    if (trial % 5 == 1) length = std::abs(rho - sigma) * (1 + std::pow(10.0, -rng.Uniform(1, 12)));
+    const Vec2 o = {length * std::cos(angle), length * std::sin(angle)};
+    KeyArc arc{0, 0};
+    const DiskCover cover = CoveredArcOfCircle(o, rho, sigma, arc);
+    arcs += cover == DiskCover::kArc;
+    wholes += cover == DiskCover::kWhole;
+    nones += cover == DiskCover::kNone;
+    for (int k = 0; k < 256; ++k) {
+      const double key = AwkwardKey(rng);
+      const Vec2 v = DirectionAtKey(key);
+      const double scale = rho / Length(v);
+      const Vec2 x = {scale * v.x, scale * v.y};
+      const double distance = Length(x - o);
+      const bool inside = distance<sigma*(1 - 1e-6), outside = distance> sigma * (1 + 1e-6);
+      const bool on_arc =
+          cover == DiskCover::kWhole || (cover == DiskCover::kArc && ArcHolds(arc, key, key));
+      ASSERT_TRUE(!inside || on_arc) << "trial " << trial << " key " << key;
+      ASSERT_TRUE(!outside || !on_arc) << "trial " << trial << " key " << key;
+    }
+  }
+  EXPECT_GT(arcs, 5000);
+  EXPECT_GT(wholes, 100);
+  EXPECT_GT(nones, 1000);
+}
+
+// DiskBins' tables hold for the arcs CoveredArcOfCircle computes, for disk radii anywhere within
+// the table's slack of its ratio, and any circle radius; and are not uselessly cautious.
+TEST(DiskArcTest, DiskBinsHoldForTheArcsComputed) {
+  Rng rng(22);
+  long looked_up = 0, lost_covered = 0, planted = 0, caught = 0;
+  for (const double ratio : {0.5, 0.88, 1.0, 1.5, 2.0}) {
+    const DiskBins* table = DiskBins::ForRatio(ratio);
+    ASSERT_NE(table, nullptr);
+    for (const double rho : {1.0, 1e-3, 7.3}) {
+      for (int trial = 0; trial < 20000; ++trial) {
+        const double sigma = rho * ratio * (1 + DiskBins::kRatioSlack * rng.Uniform(-1, 1));
+        const double angle =
+            trial % 7 == 0 ? rng.Below(8) * std::numbers::pi / 4 : rng.Uniform(0, 7);
+        double length = rng.Uniform(0, rho + sigma);
+        if (trial % 3 == 0) length = (rho + sigma) * (1 - std::pow(10.0, -rng.Uniform(1, 15)));
+        if (trial % 3 == 1) length = std::abs(rho - sigma) + rng.Uniform(-1e-9, 1e-9) * rho;
+        const Vec2 o = {length * std::cos(angle), length * std::sin(angle)};
+        if (!(SquaredLength(o) < (rho + sigma) * (rho + sigma))) continue;  // Of's REQUIRES
+        KeyArc arc{0, 0};
+        const DiskCover cover = CoveredArcOfCircle(o, rho, sigma, arc);
+        const ArcBins bins = table->Of(o, 16 / rho);
+        if (cover == DiskCover::kNone) {
+          ASSERT_EQ(bins.covered, 0u) << "ratio " << ratio << " trial " << trial;
+          continue;
+        }
+        if (cover == DiskCover::kWhole) {
+          ASSERT_EQ(bins.reached, ~uint64_t{0});
+          continue;
+        }
+        ASSERT_EQ(BinErrors(arc, bins), 0) << "ratio " << ratio << " trial " << trial;
+        lost_covered += std::popcount(BinsOf(arc).covered & ~bins.covered);
+        ++looked_up;
+        // A planted fault: covered one bin too far is caught.
+        const uint64_t too_far = bins.covered | std::rotl(bins.covered, 1);
+        planted += too_far != bins.covered;
+        caught += too_far != bins.covered && BinErrors(arc, {too_far, bins.reached}) != 0;
+      }
+    }
+  }
+  // Measured 2.7 bins an arc (the margin covers the ratio's slack), against about 1 for
+  // NeighbourBins.
+  EXPECT_LT(static_cast<double>(lost_covered) / static_cast<double>(looked_up), 4.0);
+  EXPECT_GT(planted, looked_up / 4);
+  EXPECT_GT(caught, planted / 5);  // measured 36%: the table loses bins that one more may be
+  EXPECT_EQ(DiskBins::ForRatio(DiskBins::kMaxRatio * 1.01), nullptr);
+}
+
+// BoundaryExclusions cuts from a point's circle exactly what cutting every disk's arc would, by
+// tables or not (radii with and without one), far from the origin too; leaving a disk out is
+// caught.
+TEST(DiskArcTest, CutAroundPointLeavesTheRangesOfCuttingEveryArc) {
+  Rng rng(23);
+  int empty = 0, with_ranges = 0, caught = 0, tried = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const double d = 1.0, far = trial % 4 == 0 ? 3e6 : 0.0;
+    const Vec2 centre = {far + rng.Uniform(-50, 50), rng.Uniform(-50, 50)};
+    const double max_abs = std::abs(centre.x) + 60;
+    const double spacing = SpacingFor(d, max_abs);
+    std::vector<ExclusionDisk> disks;
+    const double radii[] = {0.88, 0.6, 2.5};  // the last has no table
+    const int count = static_cast<int>(rng.Below(9));
+    for (int n = 0; n < count; ++n) {
+      const double r = radii[rng.Below(3)];
+      const double angle = rng.Uniform(0, 7), length = rng.Uniform(0.2, 1.2) * (1 + r);
+      disks.push_back(
+          {{centre.x + length * std::cos(angle), centre.y + length * std::sin(angle)}, r});
+    }
+    BoundaryExclusions exclusions(disks, d, spacing, max_abs);
+    AvailableBoundary start;
+    start.Reset();
+    if (rng.Uniform() < 0.5) start.SubtractArc(AwkwardKey(rng), AwkwardKey(rng));
+    AvailableBoundary built = start;
+    exclusions.CutAroundPoint(centre, built);
+    const auto cut_every = [&](size_t skip) {
+      AvailableBoundary expected = start;
+      for (size_t k = 0; k < exclusions.size(); ++k) {
+        KeyArc arc{0, 0};
+        const DiskCover cover = k == skip
+                                    ? DiskCover::kNone
+                                    : CoveredArcOfCircle(exclusions.centre(k) - centre, spacing,
+                                                         exclusions.cut_radius(k), arc);
+        if (cover == DiskCover::kWhole) expected.Clear();
+        if (cover == DiskCover::kArc) expected.SubtractArc(arc.from_key, arc.to_key);
+      }
+      return expected;
+    };
+    ASSERT_TRUE(SameRanges(built, cut_every(SIZE_MAX))) << "trial " << trial;
+    empty += built.empty();
+    with_ranges += !built.empty();
+    if (exclusions.size() > 0) {
+      ++tried;
+      caught += !SameRanges(built, cut_every(rng.Below(exclusions.size())));
+    }
+  }
+  EXPECT_GT(empty, 200);
+  EXPECT_GT(with_ranges, 1000);
   EXPECT_GT(caught, tried / 4);
 }
 

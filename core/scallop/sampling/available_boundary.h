@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -109,6 +110,19 @@ class AvailableBoundary {
   // The bins set in `bins` (bit k: bin k), a range to each run of bins: with
   // all bits set, the whole circle. O(runs).
   void ResetToBins(uint64_t bins);
+
+  // The bins (bit k: bin k) whose inside some range meets. O(ranges).
+  uint64_t BinsMet() const {
+    uint64_t bins = 0;
+    for (const Range& r : ranges()) {
+      // Range (b, e) meets bin k when b < (k + 1) / 16 and k / 16 < e: from the bin of b to
+      // the bin below e's bound (keys are below 4 but e, which may be 4: bin 63).
+      const int first = static_cast<int>(r.begin * kBinsPerKey);
+      const int last = static_cast<int>(std::ceil(r.end * kBinsPerKey)) - 1;
+      bins |= (~uint64_t{0} << first) & ((uint64_t{2} << last) - 1);
+    }
+    return bins;
+  }
 
   // A direction drawn uniformly by angle from the available part, with its
   // key; |direction.x| + |direction.y| = 1. REQUIRES: !empty(). O(ranges)

@@ -4,6 +4,7 @@
 #include "scallop/sampling/boundary_exclusions.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "scallop/sampling/boundary_arcs.h"
@@ -86,18 +87,12 @@ BoundaryExclusions::BoundaryExclusions(std::span<const ExclusionDisk> disks, dou
   near_.reserve(disks_.size());
 }
 
-bool BoundaryExclusions::AddArc(Vec2 offset, double circle, double disk_radius,
-                                const DiskBins* table) {
-  DiskArc arc{{0, 0}, {0, 0}, offset, circle, disk_radius, false};
-  if (table != nullptr) {
-    arc.bins = table->Of(offset, 16.0 / circle);
-  } else {
-    const DiskCover cover = CoveredArcOfCircle(offset, circle, disk_radius, arc.arc);
-    if (cover == DiskCover::kWhole) return false;
-    if (cover == DiskCover::kNone) return true;
-    arc.bins = BinsOf(arc.arc);
-    arc.has_arc = true;
-  }
+bool BoundaryExclusions::AddExactArc(Vec2 offset, double circle, double disk_radius) {
+  DiskArc arc{{0, 0}, {0, 0}, offset, circle, disk_radius, true};
+  const DiskCover cover = CoveredArcOfCircle(offset, circle, disk_radius, arc.arc);
+  if (cover == DiskCover::kWhole) return false;
+  if (cover == DiskCover::kNone) return true;
+  arc.bins = BinsOf(arc.arc);
   arcs_.push_back(arc);
   return true;
 }
@@ -106,9 +101,10 @@ bool BoundaryExclusions::Around(Vec2 centre, double circle, const DiskBins* cons
                                 size_t skip) {
   arcs_.clear();
   near_.clear();
+  if (disks_.empty()) return true;
   // Cells clamped to the grid: every centre lies in it, so the clamped range still holds each
   // centre within reach. Floor, not truncation: offsets may be negative here.
-  const double reach = circle + largest_cut_;
+  const double reach = circle + largest_cut_, scale = 16.0 / circle;
   const auto index = [&](double offset, int64_t count) {
     const double cell = std::floor(offset * inverse_cell_);
     return static_cast<int64_t>(std::clamp(cell, 0.0, static_cast<double>(count - 1)));
@@ -129,27 +125,64 @@ bool BoundaryExclusions::Around(Vec2 centre, double circle, const DiskBins* cons
       if (SquaredLength(offset) >= meets * meets) continue;
       near_.push_back(k);
       if (k == skip) continue;
-      whole = whole || !AddArc(offset, circle, radius.cut, tables[disk.radius]);
+      whole = whole || !AddArc(offset, circle, scale, radius.cut, tables[disk.radius]);
     }
   }
   return !whole;
 }
 
-bool BoundaryExclusions::DisksAroundPoint(Vec2 centre) {
-  return Around(centre, spacing_, from_point_.data(), SIZE_MAX);
+void BoundaryExclusions::Cut(AvailableBoundary& boundary) const {
+  // The bins the ranges meet; the arcs that meet none of them change nothing.
+  const uint64_t met = boundary.BinsMet();
+  uint64_t covered = 0;
+  for (const DiskArc& arc : arcs_) covered |= arc.bins.covered;
+  if ((met & ~covered) == 0) {
+    boundary.Clear();  // every bin the ranges meet lies inside one arc
+    return;
+  }
+  // Runs of covered bins lie inside arcs, closed: cut as they are.
+  for (uint64_t runs = covered & met; runs != 0;) {
+    const uint64_t run = runs & ~(runs + (runs & -runs));
+    runs &= ~run;
+    boundary.SubtractArc(std::countr_zero(run) / kBinsPerKey,
+                         (64 - std::countl_zero(run)) / kBinsPerKey);
+  }
+  const uint64_t left = met & ~covered;
+  for (const DiskArc& disk : arcs_) {
+    if ((disk.bins.reached & left) == 0 || boundary.empty()) continue;
+    KeyArc arc = disk.arc;
+    const DiskCover cover =
+        disk.has_arc ? DiskCover::kArc
+                     : CoveredArcOfCircle(disk.offset, disk.circle_radius, disk.disk_radius, arc);
+    if (cover == DiskCover::kWhole) boundary.Clear();
+    if (cover == DiskCover::kArc) boundary.SubtractArc(arc.from_key, arc.to_key);
+  }
 }
 
-bool BoundaryExclusions::DisksAroundDisk(size_t k, std::span<const Vec2> points) {
+void BoundaryExclusions::CutAroundPoint(Vec2 centre, AvailableBoundary& boundary) {
+  if (!Around(centre, spacing_, from_point_.data(), SIZE_MAX)) {
+    boundary.Clear();
+    return;
+  }
+  Cut(boundary);
+}
+
+void BoundaryExclusions::CutAroundDisk(size_t k, std::span<const Vec2> points,
+                                       AvailableBoundary& boundary) {
   const Vec2 centre = disks_[k].centre;
   const Radius& circle = radii_[disks_[k].radius];
-  if (!Around(centre, circle.cut, circle.from_disk.data(), k)) return false;
-  const double meets = circle.cut + spacing_;
-  for (const Vec2& q : points) {
-    const Vec2 offset = q - centre;
+  bool whole = !Around(centre, circle.cut, circle.from_disk.data(), k);
+  const double meets = circle.cut + spacing_, scale = 16.0 / circle.cut;
+  for (size_t n = 0; n < points.size() && !whole; ++n) {
+    const Vec2 offset = points[n] - centre;
     if (SquaredLength(offset) >= meets * meets) continue;
-    if (!AddArc(offset, circle.cut, spacing_, circle.point_from_here)) return false;
+    whole = !AddArc(offset, circle.cut, scale, spacing_, circle.point_from_here);
   }
-  return true;
+  if (whole) {
+    boundary.Clear();
+    return;
+  }
+  Cut(boundary);
 }
 
 bool BoundaryExclusions::Excludes(Vec2 x) const {

@@ -11,10 +11,21 @@
 
 #include "scallop/geometry/vec2.h"
 #include "scallop/sampling/arc_bins.h"
-#include "scallop/sampling/candidate_boundary.h"
+#include "scallop/sampling/available_boundary.h"
 #include "scallop/sampling/sampling_problem.h"
 
 namespace scallop {
+
+// A disk near a circle: the bins of the arc it covers, by a DiskBins table or from the arc
+// itself, and what computing that arc takes when a bin left over needs it.
+struct DiskArc {
+  ArcBins bins;
+  KeyArc arc;   // CoveredArcOfCircle(offset, circle_radius, disk_radius), when has_arc
+  Vec2 offset;  // the disk's centre less the circle's
+  double circle_radius;
+  double disk_radius;
+  bool has_arc;
+};
 
 // Not thread-safe: each query keeps what it found for the next calls.
 class BoundaryExclusions {
@@ -33,22 +44,19 @@ class BoundaryExclusions {
   // The radius disk k is cut with, a hair above its D.
   double cut_radius(size_t k) const { return radii_[disks_[k].radius].cut; }
 
-  // The disks that may cover part of the circle of radius `spacing` about `centre` (a point's),
-  // each with the bins of the arc it covers (from a DiskBins table where its ratio has one, so
-  // that most arcs are never computed), into disk_arcs() for CandidateBoundary::Build, and
-  // remembered for Excludes. Returns false when one disk holds the whole circle.
-  // O(disks near the circle).
-  bool DisksAroundPoint(Vec2 centre);
+  // Removes from `boundary`, the available part of the circle of radius `spacing` about
+  // `centre` (a point's), the arcs the disks cover, and remembers the disks near it for
+  // Excludes. Leaves the very ranges that SubtractArc of every arc (CoveredArcOfCircle) would:
+  // an arc is computed only if it may meet a bin the ranges meet, and the bins a disk covers
+  // whole (DiskBins' table for its ratio, where it has one) are cut as they are.
+  // O(disks near the circle + ranges x exact cuts).
+  void CutAroundPoint(Vec2 centre, AvailableBoundary& boundary);
 
-  // The same for the circle of disk k (its cut radius, `k` itself left out), then the disks of
-  // radius `spacing` about those of `points` within reach of it. Returns false when one disk
-  // holds the whole circle.
-  bool DisksAroundDisk(size_t k, std::span<const Vec2> points);
+  // The same for the circle of disk k (its cut radius), with the other disks and the disks of
+  // radius `spacing` about those of `points` within reach of it.
+  void CutAroundDisk(size_t k, std::span<const Vec2> points, AvailableBoundary& boundary);
 
-  // What the last DisksAround call found. Valid until the next.
-  std::span<const DiskArc> disk_arcs() const { return arcs_; }
-
-  // Whether a disk remembered by the last DisksAround holds x: dx^2 + dy^2 < D^2 in doubles, the
+  // Whether a disk remembered by the last Cut call holds x: dx^2 + dy^2 < D^2 in doubles, the
   // verifier's expression with D as given. REQUIRES: x on (or within rounding of) that call's
   // circle.
   bool Excludes(Vec2 x) const;
@@ -73,14 +81,22 @@ class BoundaryExclusions {
     uint32_t radius;  // into radii_
   };
 
+  // Removes the arcs of arcs_ from `boundary`, as CutAroundPoint says.
+  void Cut(AvailableBoundary& boundary) const;
   // Fills arcs_ and near_ with the disks (but `skip`) whose cut circle may meet the circle of
   // radius `circle` about `centre`; `tables[j]` sees radius j's disks from it. False: one holds
   // it whole.
   bool Around(Vec2 centre, double circle, const DiskBins* const* tables, size_t skip);
-  // Appends to arcs_ the arc of the circle (radius `circle`, table scale 16 / circle) that the
-  // disk of radius `disk_radius` at `offset` covers, by `table` or exactly. False: it holds the
-  // whole circle.
-  bool AddArc(Vec2 offset, double circle, double disk_radius, const DiskBins* table);
+  // Appends to arcs_ the arc of the circle (radius `circle`, table scale `scale` = 16 / circle)
+  // that the disk of radius `disk_radius` at `offset` covers, by `table` or exactly. False: it
+  // holds the whole circle.
+  bool AddArc(Vec2 offset, double circle, double scale, double disk_radius, const DiskBins* table) {
+    if (table == nullptr) return AddExactArc(offset, circle, disk_radius);
+    arcs_.push_back({table->Of(offset, scale), {0, 0}, offset, circle, disk_radius, false});
+    return true;
+  }
+  // AddArc without a table: the arc computed, and its bins from its keys.
+  [[gnu::noinline]] bool AddExactArc(Vec2 offset, double circle, double disk_radius);
 
   std::vector<Radius> radii_;
   std::vector<Disk> disks_;  // by cell, then as given

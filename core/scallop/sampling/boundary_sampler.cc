@@ -116,8 +116,8 @@ void PlaceOnDiskCircle(const SamplingProblem& problem, double spacing,
   if (!ClipToRectangle(area, c, radius, arcs)) return;
   const double reach = radius + spacing;
   size_t nearby_count = grid.GatherNear(c, reach, reach * reach, -1, nearby);
-  if (!exclusions.DisksAroundDisk(disk, std::span(nearby.data(), nearby_count))) return;
-  candidate_boundary.Build(c, arcs, exclusions.disk_arcs(), {}, boundary);
+  candidate_boundary.Build(c, arcs, {}, boundary);
+  exclusions.CutAroundDisk(disk, std::span(nearby.data(), nearby_count), boundary);
   const double d_squared = problem.min_distance * problem.min_distance;
   int rejected = 0;  // in a row
   while (!boundary.empty()) {
@@ -232,12 +232,12 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
     pending_near_stop -= reaches_stop(p);
 
     outside_arcs.clear();
-    bool inside = domain.torus || ClipToRectangle(domain.rect, p, spacing, outside_arcs);
-    if (inside && !exclusions.empty()) inside = exclusions.DisksAroundPoint(p);
+    const bool inside = domain.torus || ClipToRectangle(domain.rect, p, spacing, outside_arcs);
     nearby_count = grid.GatherNear(p, 2 * spacing, 4 * spacing_squared, index, nearby);
     if (inside) {
-      candidate_boundary.Build(p, outside_arcs, exclusions.disk_arcs(),
-                               std::span(nearby.data(), nearby_count), boundary);
+      candidate_boundary.Build(p, outside_arcs, std::span(nearby.data(), nearby_count), boundary);
+      // The exclusion disks after the points: most circles have nothing left by then.
+      if (!exclusions.empty() && !boundary.empty()) exclusions.CutAroundPoint(p, boundary);
     } else {
       boundary.Clear();
     }

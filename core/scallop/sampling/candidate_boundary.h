@@ -17,35 +17,19 @@
 
 namespace scallop {
 
-// A disk near a circle, of another radius than the circle's neighbours' (an exclusion disk of a
-// layered world, or a point's disk seen from an exclusion disk's circle): the bins of the arc it
-// covers, by a DiskBins table or from the arc itself, and what computing that arc takes when a
-// bin left over needs it.
-struct DiskArc {
-  ArcBins bins;
-  KeyArc arc;   // CoveredArcOfCircle(offset, circle_radius, disk_radius), when has_arc
-  Vec2 offset;  // the disk's centre less the circle's
-  double circle_radius;
-  double disk_radius;
-  bool has_arc;
-};
-
 class CandidateBoundary {
  public:
   explicit CandidateBoundary(double spacing)
       : spacing_squared_(spacing * spacing), bins_(spacing) {}
 
   // Sets `boundary` to the circle of radius s about `centre` less
-  // `other_arcs` (keys), the arcs that `disks` cover (as CoveredArcOfCircle
-  // computes them; their circle radius is s, or a circle of another radius
-  // is built with no neighbours) and the arcs that the disks of radius s about
+  // `other_arcs` (keys) and the arcs that the disks of radius s about
   // `neighbours` cover (as CoveredArcs computes them): the very ranges that
   // Reset() and then SubtractArc of every one of those arcs, in any order,
   // would leave. REQUIRES: SquaredLength(q - centre) < 4 s^2 for every
-  // neighbour q, as computed in doubles; each disk's bins hold for its arc.
-  // O(neighbours + disks + ranges x exact cuts).
-  void Build(Vec2 centre, std::span<const KeyArc> other_arcs, std::span<const DiskArc> disks,
-             std::span<const Vec2> neighbours, AvailableBoundary& boundary);
+  // neighbour q, as computed in doubles. O(neighbours + ranges x exact cuts).
+  void Build(Vec2 centre, std::span<const KeyArc> other_arcs, std::span<const Vec2> neighbours,
+             AvailableBoundary& boundary);
 
  private:
   double spacing_squared_;
@@ -60,14 +44,12 @@ class CandidateBoundary {
 // In the header, for the compiler to inline where it pays: it runs for
 // every candidate.
 inline void CandidateBoundary::Build(Vec2 centre, std::span<const KeyArc> other_arcs,
-                                     std::span<const DiskArc> disks,
                                      std::span<const Vec2> neighbours,
                                      AvailableBoundary& boundary) {
   const size_t count = neighbours.size();
   if (reached_.size() < count) reached_.resize(count + 8);
   uint64_t covered = 0;
   for (const KeyArc& arc : other_arcs) covered |= BinsOf(arc).covered;
-  for (const DiskArc& disk : disks) covered |= disk.bins.covered;
   for (size_t n = 0; n < count; ++n) {
     const ArcBins bins = bins_.Of(neighbours[n] - centre);
     covered |= bins.covered;
@@ -83,16 +65,6 @@ inline void CandidateBoundary::Build(Vec2 centre, std::span<const KeyArc> other_
   for (const KeyArc& arc : other_arcs) {
     if ((BinsOf(arc).reached & left) != 0) boundary.SubtractArc(arc.from_key, arc.to_key);
   }
-  for (const DiskArc& disk : disks) {
-    if ((disk.bins.reached & left) == 0) continue;
-    KeyArc arc = disk.arc;
-    const DiskCover cover =
-        disk.has_arc ? DiskCover::kArc
-                     : CoveredArcOfCircle(disk.offset, disk.circle_radius, disk.disk_radius, arc);
-    if (cover == DiskCover::kWhole) boundary.Clear();
-    if (cover == DiskCover::kArc) boundary.SubtractArc(arc.from_key, arc.to_key);
-  }
-  if (boundary.empty()) return;
   // The neighbours to cut, gathered without a branch each (whether one is
   // cut cannot be predicted); then all their arcs, then the cuts: the
   // arcs' divisions and square roots overlap instead of each waiting for
