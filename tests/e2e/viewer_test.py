@@ -59,36 +59,36 @@ def start_scallopd(scallopd, log, config):
     fail("scallopd printed no http address")
 
 
-def tile_points(http, world, d, level, rect, region_side=None):
-    """The points of the JSON tiles overlapping rect that lie in it, by id (tiles of level 0
-    are regions: 16 d, or region_side for a radius-field world)."""
+def tiles_over(http, world, d, level, rect, region_side=None):
+    """The JSON tiles overlapping rect (tiles of level 0 are regions: 16 d, or region_side for a
+    radius-field world)."""
     side = (region_side or REGION_SIDE_IN_D * d) * 2 ** level
-    points = {}
     for j in range(math.floor(rect[1] / side), math.floor(rect[3] / side) + 1):
         for i in range(math.floor(rect[0] / side), math.floor(rect[2] / side) + 1):
             url = f"http://{http}/v1/worlds/{world}/tiles/{i}/{j}.json?level={level}"
             with urllib.request.urlopen(url, timeout=20) as answer:
-                tile = json.load(answer)
-            for k, identifier in enumerate(tile["ids"]):
-                x, y = tile["xs"][k], tile["ys"][k]
-                if rect[0] <= x < rect[2] and rect[1] <= y < rect[3]:
-                    points[identifier] = (x, y)
+                yield json.load(answer)
+
+
+def tile_points(http, world, d, level, rect, region_side=None):
+    """The points of the JSON tiles overlapping rect that lie in it, by id."""
+    points = {}
+    for tile in tiles_over(http, world, d, level, rect, region_side):
+        for k, identifier in enumerate(tile["ids"]):
+            x, y = tile["xs"][k], tile["ys"][k]
+            if rect[0] <= x < rect[2] and rect[1] <= y < rect[3]:
+                points[identifier] = (x, y)
     return points
 
 
 def layered_tile_points(http, world, d, level, rect):
     """A layered world's JSON tiles' points in rect, by (layer name, id)."""
-    side = REGION_SIDE_IN_D * d * 2 ** level
     points = {}
-    for j in range(math.floor(rect[1] / side), math.floor(rect[3] / side) + 1):
-        for i in range(math.floor(rect[0] / side), math.floor(rect[2] / side) + 1):
-            url = f"http://{http}/v1/worlds/{world}/tiles/{i}/{j}.json?level={level}"
-            with urllib.request.urlopen(url, timeout=20) as answer:
-                tile = json.load(answer)
-            for k, identifier in enumerate(tile["ids"]):
-                x, y = tile["xs"][k], tile["ys"][k]
-                if rect[0] <= x < rect[2] and rect[1] <= y < rect[3]:
-                    points[(tile["layer_names"][tile["layers"][k]], identifier)] = (x, y)
+    for tile in tiles_over(http, world, d, level, rect):
+        for k, identifier in enumerate(tile["ids"]):
+            x, y = tile["xs"][k], tile["ys"][k]
+            if rect[0] <= x < rect[2] and rect[1] <= y < rect[3]:
+                points[(tile["layer_names"][tile["layers"][k]], identifier)] = (x, y)
     return points
 
 
