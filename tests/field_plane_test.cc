@@ -146,7 +146,9 @@ TEST(FieldPlaneTest, PlantedFaultsAreCaught) {
   ASSERT_GT(inner.size(), 20u);
   Rng rng(99);
   int removals_judged = 0;
-  for (int trial = 0; trial < 8; ++trial) {
+  // 16 trials: a removed point leaves a gap brute force can find in about half of them (3 of
+  // the first 8 in version 4's world), and at least 4 must be judged for the test to mean much.
+  for (int trial = 0; trial < 16; ++trial) {
     const size_t k = inner[rng.Below(inner.size())];
     // Moved halfway towards its nearest neighbour: a conflict.
     {
@@ -308,13 +310,15 @@ TEST(FieldPlaneTest, PointIdLayoutFollowsTheRadiusRatio) {
 // unit area (a density normalised by the local spacing), against a bounded SampleField run of
 // the same field on the same square. A wall that froze a straight growth front (a sampling
 // margin of 0.75 or 1.25 r_max) showed as a band 23% too dense and the next 30% too sparse;
-// the margin of 2.25 r_max keeps every band within 5% of the level (measured: 0.957 to
-// 1.025, the low ones around the wall).
+// the margin of 2.25 r_max keeps every band within 4% of the level on average (24 worlds,
+// version 4: 0.965 to 1.03). One band of 4 worlds varies by about 0.03 from world to world
+// (0.92 to 1.00 for the same band), so 8 worlds are judged against 10%: the worlds vary
+// within it, a wall's 23% and 30% do not.
 TEST(FieldPlaneTest, DensityIsFlatAcrossSeams) {
   constexpr int kBands = 8;  // of a quarter of the half side, 0.75 r_max
   double plane[kBands] = {}, bounded[kBands] = {};
   PlaneEngine engine(EngineOptions(2, int64_t{256} << 20));
-  for (uint64_t s = 0; s < 4; ++s) {
+  for (uint64_t s = 0; s < 8; ++s) {
     const World world = FieldWorld(FieldCase::kNoise, 50 + s);
     const RadiusField& field = *world.radius_field();
     const double side = RegionLayout(world).side();
@@ -344,8 +348,8 @@ TEST(FieldPlaneTest, DensityIsFlatAcrossSeams) {
   for (int band = 0; band < kBands; ++band) {
     const double ratio = plane[band] / bounded[band] / level;
     std::printf("band %d: plane / bounded %.4f of the level %.4f\n", band, ratio, level);
-    EXPECT_GT(ratio, 0.95) << "band " << band;
-    EXPECT_LT(ratio, 1.05) << "band " << band;
+    EXPECT_GT(ratio, 0.90) << "band " << band;
+    EXPECT_LT(ratio, 1.10) << "band " << band;
   }
 }
 

@@ -91,7 +91,7 @@ struct Golden {
   uint64_t hashes[std::size(kGoldenRegions)];
 };
 
-// Computed once with kGeneratorVersion 3 (Release and the sanitizer build
+// Computed with kGeneratorVersion 4 (Release and the sanitizer build
 // agree: -ffp-contract=off, no -ffast-math). A change of any of these values
 // means the world's points (or their ids) changed: every stored point set
 // and every client's cached ids would silently disagree with the server.
@@ -103,11 +103,11 @@ struct Golden {
 // determinism").
 constexpr Golden kGolden[] = {
     {WorldAlgorithm::kA1,
-     {0x19b760fffb7a8c6cULL, 0x804e59a34dd0f0aaULL, 0x1872d91ea1568b67ULL, 0x7a2bcea118d7ddaaULL}},
+     {0x31b08e2c4bb4601bULL, 0xac3f39aaf7686592ULL, 0x51fde06abdf70d59ULL, 0x2958c72ef270a98fULL}},
     {WorldAlgorithm::kA2,
-     {0x4920bd49e89ae34eULL, 0x4bc12a1157fe5a69ULL, 0xded827ac3c8f178aULL, 0xe6743cc0b1905b65ULL}},
+     {0x718205a60c59b67bULL, 0x47580dbfab33dfedULL, 0x3306697864d07e4eULL, 0xb867d492c54bebe9ULL}},
     {WorldAlgorithm::kA3,
-     {0x9fcb377136c14d7bULL, 0x10cae05cf58cd55bULL, 0x3e1b341810fc3cafULL, 0xa0801fb86048b368ULL}},
+     {0x7e8670ac6e18e189ULL, 0xf8d86cf5313c33a3ULL, 0xd51a82be1e8aa1b9ULL, 0x99d1552718a3dc8dULL}},
 };
 
 TEST(PlaneGoldenTest, RegionsOfAFixedWorldHaveTheirPinnedHashes) {
@@ -189,9 +189,9 @@ constexpr struct {
   uint64_t hashes[std::size(kGoldenRegions)];
 } kFieldGolden[] = {
     {RadiusFieldKind::kNoise,
-     {0x4ffbbd7666050d1fULL, 0x4b0929416f30d1e5ULL, 0xb78ad28fb4e9395eULL, 0x232a19dcad9b02d2ULL}},
+     {0x8add0a6cd5263d64ULL, 0xc0bfe4e8d36baa71ULL, 0x2e16a2857ecfa130ULL, 0x3fb3784066db885dULL}},
     {RadiusFieldKind::kRaster,
-     {0x7a0ba23f854a7245ULL, 0x3b1b0cdc82c816ddULL, 0x429a758dd3f46a80ULL, 0x4fb641960765e772ULL}},
+     {0x01fb047f9b339fd1ULL, 0x68e5c26f3fb1d636ULL, 0x5761af11cad87c5fULL, 0x3eecf264bdd7b5a0ULL}},
 };
 
 TEST(PlaneGoldenTest, RegionsOfFieldWorldsHaveTheirPinnedHashes) {

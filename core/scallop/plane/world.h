@@ -21,7 +21,7 @@ namespace scallop {
 
 // Bumped on purpose whenever a change alters any world's points (tests pin
 // golden hashes of fixed regions per algorithm to catch accidents).
-inline constexpr uint32_t kGeneratorVersion = 3;
+inline constexpr uint32_t kGeneratorVersion = 4;
 
 // The samplers a world can grow its regions with: those that can constrain
 // their output by fixed points (the baselines cannot). The values are hashed
