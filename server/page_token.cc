@@ -98,7 +98,8 @@ StatusOr<uint64_t> PageTokenCodec::Decode(const std::string& token, const World&
   }
   if (ReadWord(body, 9) != QueryDigest(world, rect, layers)) {
     return InvalidArgument(
-        "page_token: issued for another world, rect or layers than this request's");
+        "page_token: issued for another world or rect than this request's (or another layers "
+        "filter)");
   }
   return ReadWord(body, 1);
 }
