@@ -27,6 +27,15 @@ REQUESTS = [
      "rect { x0: -20 y0: 1e9 x1: 5 y1: 1000000012 } encoding: POINT_ENCODING_EXACT"),
     ("get_points_quantised", 0, "GetPointsRequest",
      "rect { x0: -9 y0: -9 x1: 9 y1: 9 } page_size: 7 encoding: POINT_ENCODING_QUANTISED"),
+    ("get_points_layers", 0, "GetPointsRequest",
+     'world_name: "forest" rect { x0: -6 y0: -6 x1: 6 y1: 6 } page_size: 9 layers: "rocks"'),
+    ("get_points_inline_layers", 0, "GetPointsRequest",
+     "world { seed: 2 algorithm: ALGORITHM_A3 layers { name: \"big\" min_distance: 4 } "
+     "layers { name: \"small\" radius_field { noise { r_min: 1 r_max: 2 frequency: 0.05 } } } "
+     "exclusions { first: \"big\" second: \"small\" distance: 1.5 } } "
+     "rect { x0: -5 y0: -5 x1: 5 y1: 5 } encoding: POINT_ENCODING_EXACT"),
+    ("nearest_layer", 3, "NearestRequest",
+     'world_name: "forest" layer: "rocks" positions { xs: [0.5, 9] ys: [0.5, -3] }'),
     ("stream_points", 1, "StreamPointsRequest",
      "world { seed: 1 min_distance: 1 algorithm: ALGORITHM_A3 } rect { x0: 0 y0: 0 x1: 1000 y1: 1000 }"),
     ("verify", 2, "VerifyRequest", 'world_name: "default" rect { x0: 10 y0: 10 x1: 50 y1: 60 }'),

@@ -10,7 +10,8 @@
 //   - an accepted GetPoints rectangle small enough to generate cheaply
 //     (kGenerateSide) yields points inside it, which survive the trip
 //     through a Points message and back, in the request's encoding too
-//     (exact: bit for bit; quantised: the same ids).
+//     (exact: bit for bit; quantised: the same ids), with their layers (a
+//     layered world's, under the request's layer filter).
 #include <boost/asio/thread_pool.hpp>
 #include <cmath>
 #include <cstdint>
@@ -21,7 +22,9 @@
 #include "fuzz/fuzz_check.h"
 #include "noise_messages.h"
 #include "scallop/noise/noise_grid.h"
+#include "scallop/plane/layer_regions.h"
 #include "scallop/plane/viewport_tracker.h"
+#include "server/layer_choice.h"
 #include "server/service_context.h"
 #include "world_messages.h"
 
@@ -38,6 +41,11 @@ constexpr double kGenerateSide = 32;
 ServerConfig FuzzConfig() {
   ServerConfig config;
   config.worlds.emplace("sparse", *World::Create({.seed = 7, .min_distance = 2, .density = 1}));
+  // A layered world, so `layers` filters and per-layer answers are reached by name.
+  config.worlds.emplace("forest",
+                        *World::Create({.seed = 7,
+                                        .layers = {{.name = "trees", .min_distance = 8},
+                                                   {.name = "rocks", .min_distance = 2}}}));
   return config;
 }
 
@@ -98,16 +106,24 @@ void FuzzGetPoints(const v1::GetPointsRequest& request) {
   if (!status.ok()) return;
   const StatusOr<PointEncoding> encoding = PointEncodingFromMessage(request.encoding());
   if (!encoding.ok()) return CheckNamesField(ToGrpcStatus(encoding.status()), "GetPoints");
+  LayerMask layers = kAllLayers;
+  if (grpc::Status filter = LayerFilterOf(world, request.layers(), "layers", layers);
+      !filter.ok()) {
+    return CheckNamesField(filter, "GetPoints");
+  }
   CheckRectRoundTrip(rect);
-  const double side = kGenerateSide * world.min_distance();
+  // A layered world generates every layer's regions, the smallest layer's many: smaller sides.
+  const double side =
+      (world.layers() != nullptr ? kGenerateSide / 4 : kGenerateSide) * world.min_distance();
   if (!(rect.Width() <= side && rect.Height() <= side)) return;
-  StatusOr<PlanePoints> points = service.engine.Points(world, rect);
+  StatusOr<PlanePoints> points = service.engine.Points(world, rect, layers);
   SCALLOP_FUZZ_CHECK(points.ok(), "an accepted rectangle fails: " + points.status().message());
   v1::Points message;
-  AppendPoints(*points, 0, points->positions.size(), message);
+  AppendPoints(*points, 0, points->positions.size(), message, world, PointEncoding::kPacked);
   PlanePoints back;
-  SCALLOP_FUZZ_CHECK(ReadPoints(message, back).ok() && back.ids == points->ids,
-                     "points do not round-trip");
+  SCALLOP_FUZZ_CHECK(
+      ReadPoints(message, back).ok() && back.ids == points->ids && back.layers == points->layers,
+      "points do not round-trip");
   for (const Vec2& p : back.positions) {
     SCALLOP_FUZZ_CHECK(p.x >= rect.x0 && p.x < rect.x1 && p.y >= rect.y0 && p.y < rect.y1,
                        "a point outside its rectangle");
@@ -117,7 +133,8 @@ void FuzzGetPoints(const v1::GetPointsRequest& request) {
   v1::Points encoded;
   AppendPoints(*points, 0, points->positions.size(), encoded, world, *encoding);
   PlanePoints decoded;
-  SCALLOP_FUZZ_CHECK(ReadPoints(encoded, decoded).ok() && decoded.ids == points->ids,
+  SCALLOP_FUZZ_CHECK(ReadPoints(encoded, decoded).ok() && decoded.ids == points->ids &&
+                         decoded.layers == points->layers,
                      "encoded points do not round-trip");
   if (*encoding == PointEncoding::kQuantised) return;
   for (size_t k = 0; k < decoded.positions.size(); ++k) {
@@ -147,15 +164,17 @@ void FuzzNearest(const v1::NearestRequest& request) {
                       message.xs_size() > service.config.max_nearest_batch)) {
     return;  // refused by the RPC itself with a "positions: ..." message
   }
+  int layer = -1;
+  if (status.ok()) status = LayerChoiceOf(resolved.world, request.layer(), "layer", layer);
+  const World& world = status.ok() ? WorldOfLayer(resolved.world, layer) : resolved.world;
   std::vector<Vec2> positions;
   for (int k = 0; status.ok() && k < message.xs_size(); ++k) {
     positions.push_back({message.xs(k), message.ys(k)});
-    status = ToGrpcStatus(NearestLookup::ValidatePosition(resolved.world, positions.back(), k));
+    status = ToGrpcStatus(NearestLookup::ValidatePosition(world, positions.back(), k));
   }
   if (status.ok()) {
     status = service.shared.CheckNearestRegions(
-        resolved.world, NearestLookup::CountRegions(resolved.world, positions), "positions",
-        "split");
+        world, NearestLookup::CountRegions(world, positions), "positions", "split");
   }
   CheckRefusalOrWorld(request, status, "Nearest");
 }

@@ -1,6 +1,9 @@
 // DescribeWorld: a world's parameters with defaults filled in, and its geometry.
+#include <algorithm>
+
 #include "field_messages.h"
 #include "scallop/plane/region_layout.h"
+#include "scallop/plane/world_layers.h"
 #include "server/scallop_service.h"
 #include "world_messages.h"
 
@@ -31,6 +34,28 @@ grpc::ServerUnaryReactor* ScallopService::DescribeWorld(grpc::CallbackServerCont
     if (const NamedRaster* raster =
             field != nullptr ? RasterOf(field->spec(), &shared_.worlds.rasters()) : nullptr) {
       *response->mutable_raster() = RasterInfoMessage(*raster);
+    }
+    if (const WorldLayers* layers = world.layers()) {
+      const std::vector<int>& order = layers->generation_order();
+      for (int k = 0; k < layers->count(); ++k) {
+        const World& own = layers->world(k);
+        const RegionLayout own_layout(own);
+        // A later layer's world has a constant field: its kind is the spec's.
+        const std::optional<RadiusFieldSpec>& spacing =
+            world.spec().layers[static_cast<size_t>(k)].radius_field;
+        v1::LayerDescription& layer = *response->add_layers();
+        layer.set_name(layers->name(k));
+        layer.set_region_side(own_layout.side());
+        layer.set_r_min(own.min_distance());
+        layer.set_r_max(own.max_spacing());
+        layer.set_field_kind(
+            std::string(RadiusFieldKindName(spacing ? spacing->kind : RadiusFieldKind::kConstant)));
+        layer.set_generation_position(
+            static_cast<uint32_t>(std::find(order.begin(), order.end(), k) - order.begin()));
+        layer.set_id_index_bits(static_cast<uint32_t>(own_layout.point_id_index_bits()));
+        layer.set_fingerprint(own.fingerprint());
+        for (int b = 0; b < layers->count(); ++b) layer.add_exclusions(layers->exclusion(k, b));
+      }
     }
     return grpc::Status::OK;
   });

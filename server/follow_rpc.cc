@@ -4,6 +4,7 @@
 // does not complete within follow_stall_seconds, or no update within
 // follow_idle_seconds, ends the call with DEADLINE_EXCEEDED (see
 // docs/streaming.md for why that code).
+#include <algorithm>
 #include <boost/asio/post.hpp>
 #include <memory>
 #include <optional>
@@ -11,9 +12,11 @@
 #include <vector>
 
 #include "encoded_points.h"
+#include "scallop/plane/layer_regions.h"
 #include "scallop/plane/viewport_tracker.h"
 #include "server/admitted_stream.h"
 #include "server/follow_prefetch.h"
+#include "server/layer_choice.h"
 #include "server/scallop_service.h"
 #include "server/stall_timer.h"
 #include "server/status_mapping.h"
@@ -21,20 +24,29 @@
 namespace scallop::server {
 namespace {
 
-ViewportUpdate UpdateFromMessage(const v1::FollowRequest& request) {
+// The update as layer `layer`'s tracker sees it: the held regions of that layer (-1: a world
+// without layers, whose regions are layer 0's in the message).
+ViewportUpdate UpdateFromMessage(const v1::FollowRequest& request, int layer = -1) {
   ViewportUpdate update{.viewport = RectFromMessage(request.viewport()),
                         .velocity = {request.velocity_x(), request.velocity_y()},
                         .keep_margin = request.keep_margin()};
   update.held_regions.reserve(static_cast<size_t>(request.held_regions_size()));
+  const auto wanted = static_cast<uint32_t>(std::max(layer, 0));
   for (const v1::RegionKey& key : request.held_regions()) {
-    update.held_regions.push_back({key.i(), key.j()});
+    if (key.layer() == wanted) update.held_regions.push_back({key.i(), key.j()});
   }
   return update;
 }
 
-void SetKey(RegionKey key, v1::RegionKey& message) {
+void SetKey(RegionKey key, int layer, v1::RegionKey& message) {
   message.set_i(key.i);
   message.set_j(key.j);
+  if (layer >= 0) message.set_layer(static_cast<uint32_t>(layer));
+}
+
+// Whether two requests' layer filters name the same layers in the same order.
+bool SameLayers(const v1::FollowRequest& a, const v1::FollowRequest& b) {
+  return std::equal(a.layers().begin(), a.layers().end(), b.layers().begin(), b.layers().end());
 }
 
 // Whether the message's value names `encoding` (PACKED and UNSPECIFIED alike).
@@ -115,30 +127,44 @@ class FollowReactor final
       FinishWith(status);
       return;
     }
-    const ViewportUpdate update = UpdateFromMessage(request_);
-    const std::vector<RegionKey> evicted = tracker_->Update(update);
-    // Generation (if the prefetch did not get there first) happens here,
-    // rank by rank in parallel on the engine's pool.
-    StatusOr<PlanePoints> in_view = shared_.engine.Points(world_, update.viewport);
-    if (!in_view.ok()) {
-      FinishWith(ToGrpcStatus(in_view.status()));
-      return;
+    // One tracker a layer asked for (a layered world's regions are its layers' own), in the
+    // layers' order: evictions of every layer, then every layer's new points.
+    std::vector<std::pair<RegionKey, int>> evicted;
+    std::vector<std::pair<RegionChunk, int>> chunks;
+    std::optional<Rect> ahead;
+    for (auto& [layer, tracker] : trackers_) {
+      const ViewportUpdate update = UpdateFromMessage(request_, layer);
+      for (const RegionKey& key : tracker.Update(update)) evicted.emplace_back(key, layer);
+      // Generation (if the prefetch did not get there first) happens here,
+      // rank by rank in parallel on the engine's pool.
+      StatusOr<PlanePoints> in_view =
+          shared_.engine.Points(WorldOfLayer(world_, layer), update.viewport);
+      if (!in_view.ok()) {
+        FinishWith(ToGrpcStatus(in_view.status()));
+        return;
+      }
+      StatusOr<std::vector<RegionChunk>> taken = tracker.TakeUnsent(*in_view);
+      if (!taken.ok()) {
+        FinishWith(ToGrpcStatus(taken.status()));
+        return;
+      }
+      for (RegionChunk& chunk : *taken) chunks.emplace_back(std::move(chunk), layer);
+      ahead = tracker.PrefetchArea(update);
     }
-    StatusOr<std::vector<RegionChunk>> chunks = tracker_->TakeUnsent(*in_view);
-    if (!chunks.ok()) {
-      FinishWith(ToGrpcStatus(chunks.status()));
-      return;
-    }
-    if (std::optional<Rect> ahead = tracker_->PrefetchArea(update)) prefetch_->Request(*ahead);
+    if (ahead) prefetch_->Request(*ahead);
 
     // Evictions ride on the first message, the completion flag on the last.
     answer_.clear();
-    answer_.resize(std::max<size_t>(chunks->size(), 1));
+    answer_.resize(std::max<size_t>(chunks.size(), 1));
     for (v1::FollowResponse& response : answer_) response.set_sequence(request_.sequence());
-    for (const RegionKey& key : evicted) SetKey(key, *answer_.front().add_evicted());
-    for (size_t n = 0; n < chunks->size(); ++n) {
-      const RegionChunk& chunk = (*chunks)[n];
+    for (const auto& [key, layer] : evicted) SetKey(key, layer, *answer_.front().add_evicted());
+    for (size_t n = 0; n < chunks.size(); ++n) {
+      auto& [chunk, layer] = chunks[n];
       v1::PointsChunk& message = *answer_[n].mutable_chunk();
+      if (layer >= 0) {
+        chunk.points.layers.assign(chunk.points.ids.size(), static_cast<uint8_t>(layer));
+        message.set_layer(static_cast<uint32_t>(layer));
+      }
       AppendPoints(chunk.points, 0, chunk.points.ids.size(), *message.mutable_points(), world_,
                    encoding_);
       message.set_region_i(chunk.key.i);
@@ -152,7 +178,7 @@ class FollowReactor final
 
   // The world (first message only) and the update's validity.
   grpc::Status PrepareUpdate() {
-    if (!tracker_) {
+    if (trackers_.empty()) {
       // The token was checked at the start; its worlds only now, with the first message.
       if (grpc::Status status = shared_.Authorize(*context_, request_); !status.ok()) {
         return status;
@@ -166,7 +192,15 @@ class FollowReactor final
       encoding_ = *encoding;
       world_ = resolved.world;
       log_.set_world(world_.Describe());
-      tracker_.emplace(world_);
+      LayerMask mask = kAllLayers;
+      if (grpc::Status status = LayerFilterOf(world_, request_.layers(), "layers", mask);
+          !status.ok()) {
+        return status;
+      }
+      first_ = request_;
+      for (const int layer : LayersAskedFor(world_, mask)) {
+        trackers_.emplace_back(layer, ViewportTracker(WorldOfLayer(world_, layer)));
+      }
       prefetch_.emplace(shared_.engine, shared_.request_pool, world_);
     } else if (request_.world_choice_case() != v1::FollowRequest::WORLD_CHOICE_NOT_SET) {
       return {grpc::StatusCode::INVALID_ARGUMENT,
@@ -176,6 +210,10 @@ class FollowReactor final
       return {grpc::StatusCode::INVALID_ARGUMENT,
               "encoding: the first message of a Follow call sets it for the call; later "
               "messages leave it unset or repeat it"};
+    } else if (request_.layers_size() != 0 && !SameLayers(request_, first_)) {
+      return {grpc::StatusCode::INVALID_ARGUMENT,
+              "layers: the first message of a Follow call sets them for the call; later "
+              "messages leave them empty or repeat them"};
     }
     if (!request_.has_viewport()) {
       return {grpc::StatusCode::INVALID_ARGUMENT,
@@ -205,10 +243,13 @@ class FollowReactor final
   StallTimer timer_;  // one wait at a time: a write, or the next update
   World world_;
   PointEncoding encoding_ = PointEncoding::kPacked;  // set by the first update
-  std::optional<ViewportTracker> tracker_;           // set by the first update
-  std::optional<FollowPrefetch> prefetch_;           // set by the first update
-  v1::FollowRequest request_;                        // the update being read or answered
-  std::vector<v1::FollowResponse> answer_;           // the messages of the current answer
+  // One tracker a layer asked for ({-1, ...} for a world without layers); set by the first
+  // update, whose layers and encoding hold for the call (first_).
+  std::vector<std::pair<int, ViewportTracker>> trackers_;
+  v1::FollowRequest first_;
+  std::optional<FollowPrefetch> prefetch_;  // set by the first update
+  v1::FollowRequest request_;               // the update being read or answered
+  std::vector<v1::FollowResponse> answer_;  // the messages of the current answer
   size_t next_message_ = 0;
 };
 

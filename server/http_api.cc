@@ -3,8 +3,10 @@
 #include "server/http_api.h"
 
 #include <boost/beast/http.hpp>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "scallop/plane/world_layers.h"
 #include "server/call_authorization.h"
 #include "server/tile_address.h"
 #include "server/tile_encoding.h"
@@ -161,6 +163,22 @@ HttpListener::Response HttpApi::AnswerWorldList(const HttpListener::Request& req
       worlds.back()["field_kind"] = std::string(RadiusFieldKindName(field->kind()));
       worlds.back()["r_min"] = field->r_min();
       worlds.back()["r_max"] = field->r_max();
+    }
+    // A layered world's layers, in the order tiles number them, each with its colour and
+    // spacing range; its tiles carry each point's layer and spacing (format version 4).
+    if (const WorldLayers* layers = world.layers()) {
+      nlohmann::json list = nlohmann::json::array();
+      for (int k = 0; k < layers->count(); ++k) {
+        char colour[8];
+        std::snprintf(colour, sizeof colour, "#%06x", TileLayerColour(k));
+        list.push_back({{"name", layers->name(k)},
+                        {"r_min", layers->world(k).min_distance()},
+                        {"r_max", layers->world(k).max_spacing()},
+                        {"colour", colour}});
+      }
+      worlds.back()["layers"] = list;
+      worlds.back()["r_max"] = layers->largest_spacing();
+      worlds.back()["tile_format_version"] = TileFormatVersion(world);
     }
   }
   HttpListener::Response response;

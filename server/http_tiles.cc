@@ -4,7 +4,9 @@
 #include <boost/asio/post.hpp>
 #include <boost/beast/http.hpp>
 
+#include "scallop/plane/layer_regions.h"
 #include "scallop/plane/query_rect.h"
+#include "scallop/plane/world_layers.h"
 #include "server/client_key.h"
 #include "server/http_api.h"
 #include "server/region_warmup.h"
@@ -36,21 +38,32 @@ bool NoneMatchHolds(std::string_view header, std::string_view etag) {
   return false;
 }
 
-// The tile's points from its regions: those in the rectangle, and for PNG
-// also those within the margin beyond it (drawn across the edge).
-Tile CollectTile(const std::vector<RegionHandle>& regions, const Rect& reach, Tile tile) {
-  const RegionLayout layout(tile.world);
-  VisitPoints(regions, layout, reach, 0, std::numeric_limits<size_t>::max(),
-              [&](const Vec2& position, uint64_t id) {
-                tile.ids.push_back(id);
-                tile.xs.push_back(position.x);
-                tile.ys.push_back(position.y);
-                // R is a pure function of the field: these are the bits the
-                // point was placed with, as GetPoints' radii carry them.
-                if (tile.world.radius_field() != nullptr) {
-                  tile.rs.push_back(tile.world.SpacingAt(position));
-                }
-              });
+// The tile's points from its regions (each layer's, for a layered world):
+// those in the rectangle, and for PNG also those within the margin beyond it
+// (drawn across the edge).
+Tile CollectTile(const std::vector<LayerRegions>& parts, const Rect& reach, Tile tile) {
+  const bool layered = tile.world.layers() != nullptr;
+  const World* spacing = tile.world.radius_field() != nullptr ? &tile.world : nullptr;
+  int layer = -1;
+  VisitLayerPoints(
+      parts, reach, 0, std::numeric_limits<size_t>::max(),
+      [&](const LayerRegions& part) {
+        layer = part.layer;
+        if (layered) spacing = &part.world;
+      },
+      [&](const Vec2& position, uint64_t id) {
+        tile.ids.push_back(id);
+        tile.xs.push_back(position.x);
+        tile.ys.push_back(position.y);
+        // R is a pure function of the field: these are the bits the point was
+        // placed with, as GetPoints' radii carry them; a layered world's
+        // points carry their layer's spacing, so disks are drawn to scale.
+        if (spacing != nullptr) tile.rs.push_back(spacing->SpacingAt(position));
+        if (layered) tile.layers.push_back(static_cast<uint16_t>(layer));
+      });
+  if (const WorldLayers* layers = tile.world.layers()) {
+    for (int k = 0; k < layers->count(); ++k) tile.layer_names.push_back(layers->name(k));
+  }
   return tile;
 }
 
@@ -88,7 +101,9 @@ void HttpApi::AnswerTile(const HttpListener::Request& request, const std::string
             .ids = {},
             .xs = {},
             .ys = {},
-            .rs = {}};
+            .rs = {},
+            .layers = {},
+            .layer_names = {}};
   log->set_world(tile.world.Describe());
   log->set_rect(tile.rect);
   if (Status status = CheckQueryRect(
@@ -146,7 +161,7 @@ void HttpApi::AnswerTile(const HttpListener::Request& request, const std::string
   response.set(http::field::content_type, AsBeastText(TileContentType(address.format)));
   // Encodes and answers; on whichever thread has the regions.
   auto finish = [this, log, reach, client, cost, format = address.format](
-                    const std::vector<RegionHandle>& regions, Tile tile,
+                    const std::vector<LayerRegions>& regions, Tile tile,
                     HttpListener::Response response, const HttpListener::Respond& respond) {
     tile = CollectTile(regions, reach, std::move(tile));
     log->add_points(static_cast<int64_t>(tile.ids.size()));
@@ -166,8 +181,8 @@ void HttpApi::AnswerTile(const HttpListener::Request& request, const std::string
     log->Finish(grpc::Status::OK);
     respond(std::move(response));
   };
-  if (std::optional<std::vector<RegionHandle>> cached =
-          shared_.engine.CachedRegions(tile.world, reach)) {
+  if (std::optional<std::vector<LayerRegions>> cached =
+          CachedQueryRegions(shared_.engine, tile.world, reach)) {
     finish(*cached, std::move(tile), std::move(response), respond);
     return;
   }
@@ -181,9 +196,10 @@ void HttpApi::AnswerTile(const HttpListener::Request& request, const std::string
         if (status.error_code() == grpc::StatusCode::CANCELLED) {
           status = {grpc::StatusCode::DEADLINE_EXCEEDED, "tile: not generated within 30 s"};
         }
-        std::vector<RegionHandle> regions;
+        std::vector<LayerRegions> regions;
         if (status.ok()) {
-          StatusOr<std::vector<RegionHandle>> resolved = shared_.engine.Regions(tile.world, reach);
+          StatusOr<std::vector<LayerRegions>> resolved =
+              QueryRegions(shared_.engine, tile.world, reach);
           if (resolved.ok()) {
             regions = std::move(*resolved);
           } else {

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "scallop/plane/layer_regions.h"
+#include "server/layer_choice.h"
 #include "server/request_cost.h"
 #include "server/scallop_service.h"
 #include "server/status_mapping.h"
@@ -20,9 +22,16 @@ grpc::ServerUnaryReactor* ScallopService::Nearest(grpc::CallbackServerContext* c
       context, "Nearest", auth,
       RequestCost(shared_.worlds, *request, shared_.config.max_nearest_regions),
       [this, context, request, response](RequestLog& log) {
-        World world;
-        if (grpc::Status status = shared_.ResolveWorld(*request, log, world); !status.ok())
+        World asked;
+        if (grpc::Status status = shared_.ResolveWorld(*request, log, asked); !status.ok())
           return status;
+        // A layered world answers for the layer named: that layer's world, its points and ids.
+        int layer = -1;
+        if (grpc::Status status = LayerChoiceOf(asked, request->layer(), "layer", layer);
+            !status.ok()) {
+          return status;
+        }
+        const World& world = WorldOfLayer(asked, layer);
         const v1::Positions& message = request->positions();
         if (message.xs_size() != message.ys_size()) {
           return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
@@ -56,7 +65,7 @@ grpc::ServerUnaryReactor* ScallopService::Nearest(grpc::CallbackServerContext* c
             !status.ok()) {
           return ToGrpcStatus(status);
         }
-        *response->mutable_world() = shared_.worlds.ToMessage(world);
+        *response->mutable_world() = shared_.worlds.ToMessage(asked);
         const int count = static_cast<int>(results.size());
         for (auto* field :
              {response->mutable_f1(), response->mutable_f2(), response->mutable_nearest_xs(),

@@ -5,6 +5,8 @@
 
 #include "noise_messages.h"
 #include "scallop/noise/noise_grid.h"
+#include "scallop/plane/layer_regions.h"
+#include "server/layer_choice.h"
 #include "server/request_cost.h"
 #include "server/scallop_service.h"
 #include "server/status_mapping.h"
@@ -20,9 +22,16 @@ grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext*
       context, "NoiseGrid", auth,
       RequestCost(shared_.worlds, *request, shared_.config.max_nearest_regions),
       [this, context, request, response](RequestLog& log) {
-        World world;
-        if (grpc::Status status = shared_.ResolveWorld(*request, log, world); !status.ok())
+        World asked;
+        if (grpc::Status status = shared_.ResolveWorld(*request, log, asked); !status.ok())
           return status;
+        // A layered world answers for the layer named: that layer's world, its points and ids.
+        int layer = -1;
+        if (grpc::Status status = LayerChoiceOf(asked, request->layer(), "layer", layer);
+            !status.ok()) {
+          return status;
+        }
+        const World& world = WorldOfLayer(asked, layer);
         const std::optional<NoiseChannel> channel = NoiseChannelFromMessage(request->channel());
         if (!channel) {
           return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
@@ -52,7 +61,7 @@ grpc::ServerUnaryReactor* ScallopService::NoiseGrid(grpc::CallbackServerContext*
             EvaluateNoiseGrid(shared_.nearest_lookup, world, spec,
                               shared_.config.max_noise_grid_samples, StopWhenGone(context));
         if (!image.ok()) return ToGrpcStatus(image.status());
-        *response->mutable_world() = shared_.worlds.ToMessage(world);
+        *response->mutable_world() = shared_.worlds.ToMessage(asked);
         response->set_width(image->width);
         response->set_height(image->height);
         response->mutable_values()->Add(image->values.begin(), image->values.end());

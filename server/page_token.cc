@@ -8,6 +8,7 @@
 #include <bit>
 
 #include "scallop/random/rng.h"
+#include "server/layer_choice.h"
 
 namespace scallop::server {
 namespace {
@@ -30,9 +31,13 @@ uint64_t ReadWord(const std::string& in, size_t at) {
 // rectangle, and a token minted for one must page the other.
 uint64_t CoordinateBits(double value) { return std::bit_cast<uint64_t>(value + 0.0); }
 
-uint64_t QueryDigest(const World& world, const Rect& rect) {
-  return HashWords({world.fingerprint(), CoordinateBits(rect.x0), CoordinateBits(rect.y0),
-                    CoordinateBits(rect.x1), CoordinateBits(rect.y1)});
+uint64_t QueryDigest(const World& world, const Rect& rect, LayerMask layers) {
+  const uint64_t digest =
+      HashWords({world.fingerprint(), CoordinateBits(rect.x0), CoordinateBits(rect.y0),
+                 CoordinateBits(rect.x1), CoordinateBits(rect.y1)});
+  // A layered world's pages depend on the filter too; other worlds' digests stay as they were.
+  if (world.layers() == nullptr) return digest;
+  return HashWords({digest, NormalisedLayerMask(world, layers)});
 }
 
 std::string ToHex(const std::string& bytes) {
@@ -70,15 +75,16 @@ std::string PageTokenCodec::Tag(const std::string& body) const {
   return std::string(reinterpret_cast<const char*>(digest), kTagBytes);
 }
 
-std::string PageTokenCodec::Encode(const World& world, const Rect& rect, uint64_t offset) const {
+std::string PageTokenCodec::Encode(const World& world, const Rect& rect, uint64_t offset,
+                                   LayerMask layers) const {
   std::string body(1, kTokenVersion);
   AppendWord(body, offset);
-  AppendWord(body, QueryDigest(world, rect));
+  AppendWord(body, QueryDigest(world, rect, layers));
   return ToHex(body + Tag(body));
 }
 
 StatusOr<uint64_t> PageTokenCodec::Decode(const std::string& token, const World& world,
-                                          const Rect& rect) const {
+                                          const Rect& rect, LayerMask layers) const {
   std::string bytes;
   if (!FromHex(token, bytes) || bytes.size() != kBodyBytes + kTagBytes ||
       bytes[0] != kTokenVersion) {
@@ -90,8 +96,10 @@ StatusOr<uint64_t> PageTokenCodec::Decode(const std::string& token, const World&
     return InvalidArgument(
         "page_token: tampered with or issued by a differently configured server");
   }
-  if (ReadWord(body, 9) != QueryDigest(world, rect)) {
-    return InvalidArgument("page_token: issued for another world or rect than this request's");
+  if (ReadWord(body, 9) != QueryDigest(world, rect, layers)) {
+    return InvalidArgument(
+        "page_token: issued for another world or rect than this request's (or another layers "
+        "filter)");
   }
   return ReadWord(body, 1);
 }

@@ -8,6 +8,7 @@
 
 #include "scallop/base/status.h"
 #include "scallop/geometry/rect.h"
+#include "scallop/plane/plane_engine.h"
 #include "scallop/plane/world.h"
 
 namespace scallop::server {
@@ -24,12 +25,18 @@ class PageTokenCodec {
   // tag is there to catch corrupted, truncated and edited tokens loudly.
   explicit PageTokenCodec(std::string key) : key_(std::move(key)) {}
 
-  // The token for the page starting at `offset` of (world, rect). O(1).
-  std::string Encode(const World& world, const Rect& rect, uint64_t offset) const;
+  // The token for the page starting at `offset` of (world, rect), and for a
+  // layered world its layer filter (NormalisedLayerMask): the offset counts
+  // the filtered points layer by layer, so it names (layer, region, index).
+  // A world without layers ignores the mask (its tokens are as before). O(1).
+  std::string Encode(const World& world, const Rect& rect, uint64_t offset,
+                     LayerMask layers = kAllLayers) const;
 
   // The offset a token encodes. INVALID_ARGUMENT naming page_token when it is
-  // malformed, its tag does not match, or it was made for another world or rect.
-  StatusOr<uint64_t> Decode(const std::string& token, const World& world, const Rect& rect) const;
+  // malformed, its tag does not match, or it was made for another world, rect
+  // or layer filter.
+  StatusOr<uint64_t> Decode(const std::string& token, const World& world, const Rect& rect,
+                            LayerMask layers = kAllLayers) const;
 
  private:
   std::string Tag(const std::string& body) const;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "scallop/plane/layer_regions.h"
 #include "scallop/plane/query_rect.h"
 #include "server/status_mapping.h"
 
@@ -16,7 +17,16 @@ constexpr int64_t kBlockSide = 8;
 }  // namespace
 
 grpc::Status WarmRegions(PlaneEngine& engine, const World& world, const Rect& rect,
-                         const std::function<bool()>& stop) {
+                         const std::function<bool()>& stop, LayerMask layers) {
+  if (world.layers() != nullptr) {
+    for (const int layer : LayersAskedFor(world, layers)) {
+      if (grpc::Status status = WarmRegions(engine, WorldOfLayer(world, layer), rect, stop);
+          !status.ok()) {
+        return status;
+      }
+    }
+    return grpc::Status::OK;
+  }
   const RegionLayout layout(world);
   const auto [low, high] = RegionsOverlapping(layout, rect);
   for (int64_t j = low.j; j <= high.j; j += kBlockSide) {

@@ -16,7 +16,9 @@ namespace scallop::server {
 // CANCELLED as soon as it returns true. The points are those the query would
 // give (blocks only change the order of generation).
 // Errors as PlaneEngine::Regions. REQUIRES: ValidateQuery(world, rect) ok.
+// A layered world: the regions of each layer in `layers`, one layer after
+// another (QueryRegions' parts; earlier layers come with the later ones).
 grpc::Status WarmRegions(PlaneEngine& engine, const World& world, const Rect& rect,
-                         const std::function<bool()>& stop);
+                         const std::function<bool()>& stop, LayerMask layers = kAllLayers);
 
 }  // namespace scallop::server

@@ -5,7 +5,10 @@
 #include <limits>
 
 #include "scallop/noise/nearest_lookup.h"
+#include "scallop/plane/layer_regions.h"
 #include "scallop/plane/query_rect.h"
+#include "scallop/plane/world_layers.h"
+#include "server/layer_choice.h"
 #include "world_messages.h"
 
 namespace scallop::server {
@@ -19,6 +22,16 @@ bool ResolveWorld(const WorldRegistry& worlds, const Request& request, World& wo
   return true;
 }
 
+// Nearest and NoiseGrid answer for one layer of a layered world: that layer's world.
+template <typename Request>
+bool ResolveLayerWorld(const WorldRegistry& worlds, const Request& request, World& world) {
+  if (!ResolveWorld(worlds, request, world)) return false;
+  int layer = -1;
+  if (!LayerChoiceOf(world, request.layer(), "layer", layer).ok()) return false;
+  if (layer >= 0) world = WorldOfLayer(world, layer);
+  return true;
+}
+
 // Nearest and NoiseGrid on the box of their positions: each position reads its region's
 // search grid (the 3 x 3 regions about it, shared by every position of the region), so the
 // positions' regions bound the cost, as do their number and max_regions (a call in more is
@@ -29,7 +42,11 @@ bool ResolveWorld(const WorldRegistry& worlds, const Request& request, World& wo
 int64_t NearestCost(const World& world, const Rect& box, int64_t positions, int64_t max_regions) {
   const int64_t plain = std::min({RegionsCost(world, box), positions, max_regions});
   const RadiusField* field = world.radius_field();
-  if (field == nullptr || !field->HasMask()) return plain;
+  // A later layer's positions near an earlier layer's exclusion disks may need the brute force
+  // too: the disks leave the layer's own points farther than its spacing.
+  const bool may_fall_back =
+      (field != nullptr && field->HasMask()) || world.earlier_layers() != nullptr;
+  if (!may_fall_back) return plain;
   const double reach = NearestLookup::FallbackReach(world);
   const double limit = RegionLayout(world).precision_limit();
   // Cut to the range, where the world has its points (and RegionsCost counts).
@@ -42,6 +59,13 @@ int64_t NearestCost(const World& world, const Rect& box, int64_t positions, int6
 }  // namespace
 
 int64_t RegionsCost(const World& world, const Rect& rect) {
+  if (const WorldLayers* layers = world.layers()) {
+    // Every layer's own regions, whatever the filter: a later layer's regions read the earlier
+    // layers' (whose halo, farther out, this does not count: it is a few regions a layer).
+    int64_t cost = 0;
+    for (int k = 0; k < layers->count(); ++k) cost += RegionsCost(layers->world(k), rect);
+    return cost;
+  }
   if (!CheckRectBounds(world, rect, "rect").ok()) return 1;
   const double count = RegionsOverlapping(RegionLayout(world), rect).Count();
   // Far beyond any budget already; the cast stays defined.
@@ -58,14 +82,18 @@ int64_t RequestCost(const WorldRegistry& worlds, const v1::VerifyRequest& reques
   World world;
   if (!ResolveWorld(worlds, request, world)) return 1;
   const Rect rect = RectFromMessage(request.rect());
-  const double halo = 2 * world.max_spacing();  // VerifyWorldRect's halo
+  const WorldLayers* layers = world.layers();
+  // VerifyWorldRect's halo.
+  const double halo = layers != nullptr
+                          ? std::max(2 * layers->largest_spacing(), layers->largest_exclusion())
+                          : 2 * world.max_spacing();
   return RegionsCost(world, {rect.x0 - halo, rect.y0 - halo, rect.x1 + halo, rect.y1 + halo});
 }
 
 int64_t RequestCost(const WorldRegistry& worlds, const v1::NoiseGridRequest& request,
                     int64_t max_regions) {
   World world;
-  if (!ResolveWorld(worlds, request, world) || request.width() < 1 || request.height() < 1) {
+  if (!ResolveLayerWorld(worlds, request, world) || request.width() < 1 || request.height() < 1) {
     return 1;
   }
   const double x0 = request.origin_x(), y0 = request.origin_y(), step = request.step();
@@ -81,7 +109,9 @@ int64_t RequestCost(const WorldRegistry& worlds, const v1::NearestRequest& reque
   World world;
   const auto& xs = request.positions().xs();
   const auto& ys = request.positions().ys();
-  if (!ResolveWorld(worlds, request, world) || xs.empty() || xs.size() != ys.size()) return 1;
+  if (!ResolveLayerWorld(worlds, request, world) || xs.empty() || xs.size() != ys.size()) {
+    return 1;
+  }
   const auto [x0, x1] = std::minmax_element(xs.begin(), xs.end());
   const auto [y0, y1] = std::minmax_element(ys.begin(), ys.end());
   return NearestCost(world,

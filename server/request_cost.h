@@ -15,9 +15,15 @@
 namespace scallop::server {
 
 // Regions `rect` overlaps in `world`; 1 when the rectangle is out of bounds.
+// A layered world: the sum over every layer of its own regions (whatever the
+// request's filter, since a later layer's regions read the earlier ones').
 int64_t RegionsCost(const World& world, const Rect& rect);
 
-// GetPoints: its rectangle. Verify: the rectangle and its 2 d halo.
+// GetPoints: its rectangle. Verify: the rectangle and its halo (2 d; a
+// layered world's max(2 largest spacing, largest D)). Nearest and NoiseGrid
+// of a layered world: the regions of the layer asked for, with the brute
+// force's reach counted as for masks (exclusion disks leave spots farther
+// from the layer's points than its spacing).
 // NoiseGrid and Nearest: the regions of the box around their samples or
 // positions, or their number, or `max_regions` (max_nearest_regions: a call
 // whose points lie in more regions is refused before any work), the least;

@@ -187,9 +187,7 @@ Status LoadConfigFile(const std::string& path, ServerConfig& config) {
       const std::string name = entry.first.as<std::string>();
       const YAML::Node& fields = entry.second;
       key = "worlds." + name;
-      // Layered worlds are not served yet: the World message has no layers (issue 19).
-      StatusOr<World> world =
-          WorldFromYaml(fields, config.rasters, path + ": " + key, /*allow_layers=*/false);
+      StatusOr<World> world = WorldFromYaml(fields, config.rasters, path + ": " + key);
       if (!world.ok()) return world.status();
       config.worlds[name] = *world;
     }

@@ -14,6 +14,7 @@ grpc::ServerUnaryReactor* ScallopService::GetServerInfo(grpc::CallbackServerCont
     response->set_region_side_in_d(kRegionSideInD);
     response->set_precision_range_in_d(kPrecisionRangeInD);
     response->set_field_region_side_in_r_max(kFieldRegionSideInRMax);
+    response->set_max_layers(kMaxLayers);
     v1::Limits& limits = *response->mutable_limits();
     limits.set_max_page_size(shared_.config.max_page_size);
     limits.set_max_query_area(shared_.config.max_query_area);

@@ -6,9 +6,11 @@
 #include <boost/asio/post.hpp>
 
 #include "encoded_points.h"
+#include "scallop/plane/layer_regions.h"
 #include "scallop/plane/query_rect.h"
 #include "scallop/plane/region_layout.h"
 #include "server/admitted_stream.h"
+#include "server/layer_choice.h"
 #include "server/scallop_service.h"
 #include "server/stall_timer.h"
 #include "server/status_mapping.h"
@@ -62,45 +64,63 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
     StatusOr<PointEncoding> encoding = PointEncodingFromMessage(request.encoding());
     if (!encoding.ok()) return ToGrpcStatus(encoding.status());
     encoding_ = *encoding;
-    range_ = RegionsOverlapping(RegionLayout(world_), rect_);
-    next_ = range_.low;
+    LayerMask mask = kAllLayers;
+    if (grpc::Status status = LayerFilterOf(world_, request.layers(), "layers", mask);
+        !status.ok()) {
+      return status;
+    }
+    layers_ = LayersAskedFor(world_, mask);
+    StartLayer(0);
     return grpc::Status::OK;
+  }
+
+  // The regions of the n-th layer asked for (the world's own without layers).
+  void StartLayer(size_t n) {
+    part_ = n;
+    if (n >= layers_.size()) return;
+    range_ = RegionsOverlapping(RegionLayout(WorldOfLayer(world_, layers_[n])), rect_);
+    next_ = range_.low;
   }
 
   void ScheduleNextChunk() {
     boost::asio::post(shared_.request_pool, [this] { WriteNextChunk(); });
   }
 
-  // Regions in the order GetPoints returns them (rows, then columns), so the
-  // stream's concatenation equals the unary answer. Skips regions with no
-  // point inside the rectangle.
+  // Regions in the order GetPoints returns them (rows, then columns; a
+  // layered world's layer by layer), so the stream's concatenation equals
+  // the unary answer. Skips regions with no point inside the rectangle.
   void WriteNextChunk() {
-    const RegionLayout layout(world_);
     while (true) {
       if (context_->IsCancelled()) {
         FinishWith({grpc::StatusCode::CANCELLED, "stream: cancelled or past its deadline"});
         return;
       }
-      if (next_.j > range_.high.j) {
+      if (part_ < layers_.size() && next_.j > range_.high.j) StartLayer(part_ + 1);
+      if (part_ >= layers_.size()) {
         FinishWith(grpc::Status::OK);
         return;
       }
+      const int layer = layers_[part_];
+      const World& own = WorldOfLayer(world_, layer);
+      const RegionLayout layout(own);
       const RegionKey key = next_;
       next_ =
           key.i < range_.high.i ? RegionKey{key.i + 1, key.j} : RegionKey{range_.low.i, key.j + 1};
       const Rect owned = layout.RegionRect(key);
       const Rect part{std::max(rect_.x0, owned.x0), std::max(rect_.y0, owned.y0),
                       std::min(rect_.x1, owned.x1), std::min(rect_.y1, owned.y1)};
-      StatusOr<PlanePoints> points = shared_.engine.Points(world_, part);
+      StatusOr<PlanePoints> points = shared_.engine.Points(own, part);
       if (!points.ok()) {
         FinishWith(ToGrpcStatus(points.status()));
         return;
       }
       if (points->ids.empty()) continue;
+      if (layer >= 0) points->layers.assign(points->ids.size(), static_cast<uint8_t>(layer));
       chunk_.Clear();
       AppendPoints(*points, 0, points->ids.size(), *chunk_.mutable_points(), world_, encoding_);
       chunk_.set_region_i(key.i);
       chunk_.set_region_j(key.j);
+      if (layer >= 0) chunk_.set_layer(static_cast<uint32_t>(layer));
       log_.add_points(static_cast<int64_t>(points->ids.size()));
       timer_.Arm(stall_seconds_, stall_message_);
       StartWrite(&chunk_);
@@ -116,7 +136,10 @@ class StreamPointsReactor final : public AdmittedStream<grpc::ServerWriteReactor
   World world_;
   Rect rect_;
   PointEncoding encoding_ = PointEncoding::kPacked;
-  RegionRange range_;
+  std::vector<int> layers_;  // the layers asked for ({-1}: a world without layers)
+  size_t part_ = 0;          // the one being streamed: layers_[part_]
+  RegionRange range_;        // its regions
+
   RegionKey next_;
   v1::PointsChunk chunk_;  // the chunk being written; reused, alive until OnWriteDone
 };

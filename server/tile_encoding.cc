@@ -6,8 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 
 #include "scallop/image/png_image.h"
+#include "scallop/plane/world_layers.h"
 
 namespace scallop::server {
 namespace {
@@ -100,7 +102,7 @@ std::string EncodeTileJson(const Tile& tile) {
     AppendUnsigned(out, tile.ids[k]);
     out += '"';
   }
-  const bool radii = tile.world.radius_field() != nullptr;
+  const bool radii = tile.world.radius_field() != nullptr || tile.world.layers() != nullptr;
   for (const auto& [name, values] :
        {std::pair{"xs", &tile.xs}, {"ys", &tile.ys}, {"rs", &tile.rs}}) {
     if (values == &tile.rs && !radii) break;
@@ -112,18 +114,32 @@ std::string EncodeTileJson(const Tile& tile) {
       AppendNumber(out, (*values)[k]);
     }
   }
+  if (tile.world.layers() != nullptr) {
+    out += "],\"layers\":[";
+    for (size_t k = 0; k < tile.layers.size(); ++k) {
+      if (k > 0) out += ',';
+      AppendInteger(out, tile.layers[k]);
+    }
+    out += "],\"layer_names\":[";
+    for (size_t k = 0; k < tile.layer_names.size(); ++k) {
+      if (k > 0) out += ',';
+      AppendJsonString(out, tile.layer_names[k]);
+    }
+  }
   out += "]}";
   return out;
 }
 
 std::string EncodeTileBinary(const Tile& tile) {
   std::string out;
-  const bool radii = tile.world.radius_field() != nullptr;
-  out.reserve(80 + tile.ids.size() * (radii ? 32 : 24));
+  const bool layered = tile.world.layers() != nullptr;
+  const bool radii = tile.world.radius_field() != nullptr || layered;
+  out.reserve(80 + tile.ids.size() * (radii ? 34 : 24));
   out += "SCTL";
   AppendLittleEndian(out, uint16_t{1});  // binary layout version
-  // Flags: bit 0, an rs array follows ys (radius-field worlds); no layers yet.
-  AppendLittleEndian(out, static_cast<uint16_t>(radii ? 1 : 0));
+  // Flags: bit 0, an rs array follows ys (radius-field and layered worlds); bit 1, a layers
+  // array follows (layered worlds).
+  AppendLittleEndian(out, static_cast<uint16_t>((radii ? 1 : 0) | (layered ? 2 : 0)));
   AppendLittleEndian(out, static_cast<uint32_t>(tile.ids.size()));
   AppendLittleEndian(out, static_cast<uint32_t>(tile.key.level));
   AppendLittleEndian(out, static_cast<uint64_t>(tile.key.i));
@@ -141,22 +157,42 @@ std::string EncodeTileBinary(const Tile& tile) {
   if (radii) {
     for (const double r : tile.rs) AppendDouble(out, r);
   }
+  if (layered) {
+    for (const uint16_t layer : tile.layers) AppendLittleEndian(out, layer);
+  }
   return out;
+}
+
+int TileFormatVersion(const World& world) {
+  return world.layers() != nullptr ? kLayeredTileFormatVersion : kTileFormatVersion;
+}
+
+uint32_t TileLayerColour(int layer) {
+  static constexpr uint32_t kColours[] = {0x2e7d32, 0x8d6e63, 0x546e7a, 0xc62828,
+                                          0x6a1b9a, 0x1565c0, 0xef6c00, 0x00838f};
+  return kColours[static_cast<size_t>(layer) % std::size(kColours)];
 }
 
 double TilePngMargin(const Tile& tile) {
   const double pixel = tile.rect.Width() / kTilePngSide;
-  // The largest disk: d/4, or r_max/4 in a radius-field world.
-  return std::max(0.25 * tile.world.max_spacing(), 0.75 * pixel) + pixel;
+  // The largest disk: d/4, or r_max/4 in a radius-field world, a layered world's largest
+  // spacing / 4.
+  const double spacing = tile.world.layers() != nullptr ? tile.world.layers()->largest_spacing()
+                                                        : tile.world.max_spacing();
+  return std::max(0.25 * spacing, 0.75 * pixel) + pixel;
 }
 
 StatusOr<std::string> RenderTilePng(const Tile& tile) {
   constexpr uint8_t kGround = 255;
   constexpr uint8_t kPoint = 40;
+  // Grey for one kind of point; a layered world's in colour, a colour a layer.
+  const int channels = tile.layers.empty() ? 1 : 3;
   Image8 image{.width = kTilePngSide,
                .height = kTilePngSide,
-               .channels = 1,
-               .pixels = std::vector<uint8_t>(kTilePngSide * kTilePngSide, kGround)};
+               .channels = channels,
+               .pixels = std::vector<uint8_t>(
+                   static_cast<size_t>(kTilePngSide) * kTilePngSide * static_cast<size_t>(channels),
+                   kGround)};
   const double pixel = tile.rect.Width() / kTilePngSide;  // tiles are square
   // Pixel (column c, row r) has its centre at (x0 + (c + 0.5) pixel,
   // y1 - (r + 0.5) pixel): row 0 is the top.
@@ -170,11 +206,20 @@ StatusOr<std::string> RenderTilePng(const Tile& tile) {
     const int c1 = std::min(kTilePngSide - 1, static_cast<int>(std::floor(u + reach)));
     const int r0 = std::max(0, static_cast<int>(std::floor(v - reach)));
     const int r1 = std::min(kTilePngSide - 1, static_cast<int>(std::floor(v + reach)));
+    const uint32_t colour = channels == 1 ? 0 : TileLayerColour(tile.layers[k]);
     for (int r = r0; r <= r1; ++r) {
       for (int c = c0; c <= c1; ++c) {
         const double du = c + 0.5 - u, dv = r + 0.5 - v;
-        if (du * du + dv * dv <= reach * reach) {
-          image.pixels[static_cast<size_t>(r) * kTilePngSide + c] = kPoint;
+        if (du * du + dv * dv > reach * reach) continue;
+        const size_t at = (static_cast<size_t>(r) * kTilePngSide + static_cast<size_t>(c)) *
+                          static_cast<size_t>(channels);
+        if (channels == 1) {
+          image.pixels[at] = kPoint;
+        } else {
+          for (int channel = 0; channel < 3; ++channel) {
+            image.pixels[at + static_cast<size_t>(channel)] =
+                static_cast<uint8_t>(colour >> (16 - 8 * channel));
+          }
         }
       }
     }
@@ -193,9 +238,10 @@ std::string FingerprintHex(uint64_t fingerprint) {
 std::string TileEtag(const World& world, const TileKey& key, TileFormat format) {
   std::string etag = "\"";
   return etag + FingerprintHex(world.fingerprint()) + ".g" +
-         std::to_string(world.generator_version()) + ".t" + std::to_string(kTileFormatVersion) +
-         ".L" + std::to_string(key.level) + "." + std::to_string(key.i) + "." +
-         std::to_string(key.j) + "." + std::string(TileFormatName(format)) + "\"";
+         std::to_string(world.generator_version()) + ".t" +
+         std::to_string(TileFormatVersion(world)) + ".L" + std::to_string(key.level) + "." +
+         std::to_string(key.i) + "." + std::to_string(key.j) + "." +
+         std::string(TileFormatName(format)) + "\"";
 }
 
 }  // namespace scallop::server

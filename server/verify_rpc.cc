@@ -1,13 +1,16 @@
 // Verify: the CGAL Delaunay verifier on a rectangle of a world (plus its 2 d
-// halo), reported field by field.
+// halo), reported field by field; a field world's by the field verifier, a
+// layered world's by the layered verifier.
 #include <algorithm>
 #include <cmath>
 
+#include "scallop/plane/world_layers.h"
 #include "scallop/plane/world_verifier.h"
 #include "server/region_warmup.h"
 #include "server/request_cost.h"
 #include "server/scallop_service.h"
 #include "server/status_mapping.h"
+#include "verify_messages.h"
 #include "world_messages.h"
 
 namespace scallop::server {
@@ -31,7 +34,10 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
         // A rectangle the rule refuses is left to VerifyWorldRect to report.
         const QueryLimit limit{.max_area = shared_.config.max_verify_area,
                                .name = "max_verify_area"};
-        const double halo = 2 * world.max_spacing();  // VerifyWorldRect's
+        const WorldLayers* layers = world.layers();
+        const double halo =  // VerifyWorldRect's
+            layers != nullptr ? std::max(2 * layers->largest_spacing(), layers->largest_exclusion())
+                              : 2 * world.max_spacing();
         if (const Rect grown = Grown(rect, halo);
             CheckQueryRect(world, grown, limit, "rect+halo").ok()) {
           if (grpc::Status status =
@@ -59,17 +65,12 @@ grpc::ServerUnaryReactor* ScallopService::Verify(grpc::CallbackServerContext* co
         response->set_spacing_violations_across_seams(report->spacing_violations_across_seams);
         response->set_spacing_ok(report->spacing_ok);
         response->set_maximal_ok(report->maximal_ok);
-        if (report->field) {
-          const FieldVerifyReport& field = *report->field;
-          v1::FieldVerifyResponse& out = *response->mutable_field();
-          out.set_conflicts(field.conflicts);
-          out.set_min_spacing_ratio(field.min_spacing_ratio);
-          out.set_largest_gap(field.largest_gap);
-          out.set_largest_gap_x(field.largest_gap_spot.x);
-          out.set_largest_gap_y(field.largest_gap_spot.y);
-          out.set_gap_bound(field.gap_bound);
-          out.set_points_masked(field.points_masked);
-          out.set_passed(field.passed());
+        if (report->field) *response->mutable_field() = FieldVerifyToMessage(*report->field);
+        if (report->layered) {
+          std::vector<std::string> names;
+          for (int k = 0; k < world.layers()->count(); ++k)
+            names.push_back(world.layers()->name(k));
+          *response->mutable_layered() = LayeredVerifyToMessage(*report->layered, names);
         }
         response->set_maximality_tolerance(MaximalityTolerance(world.min_distance(), max_abs));
         response->set_passed(report->passed());

@@ -1,13 +1,19 @@
 // Resolution of a request's world: inline, by name, or the default.
 #include "server/world_registry.h"
 
+#include <algorithm>
+
 #include "server/client_text.h"
 #include "server/status_mapping.h"
 
 namespace scallop::server {
 
 grpc::Status WorldRegistry::ResolveInline(const v1::World& message, ResolvedWorld& resolved) const {
-  const bool raster = message.radius_field().has_raster();
+  // A raster layer costs its pixels as a raster world does.
+  const bool raster =
+      message.radius_field().has_raster() ||
+      std::any_of(message.layers().begin(), message.layers().end(),
+                  [](const v1::Layer& layer) { return layer.radius_field().has_raster(); });
   std::string key;
   if (raster) {
     // Equal messages serialize alike: the fields are scalars written in field order.

@@ -50,14 +50,16 @@ int RunFollow(const FollowArguments& arguments) {
     return ReportBadArguments("follow", status);
   }
   first.set_encoding(arguments.encoding);
+  SetRequestLayerFilter(arguments.world, first);
   StatusOr<std::vector<Rect>> path = ReadPath(arguments.path);
   if (!path.ok()) return ReportBadArguments("follow", path.status());
   StatusOr<client::ScallopClient> connected =
       ConnectTo(arguments.remote.server, arguments.remote.connection);
   if (!connected.ok()) return ReportBadArguments("follow", connected.status());
-  const client::ScallopClient& client = *connected;
+  client::ScallopClient& client = *connected;
   client::FollowSession session(client, CallOptionsFor(arguments.remote));
-  IncrementalCsv csv(std::cout, first.world().has_radius_field());
+  IncrementalCsv csv(std::cout, first.world().has_radius_field(),
+                     LayerNamesFrom(client, first, CallOptionsFor(arguments.remote)));
   int64_t total_points = 0, total_bytes = 0;
   for (size_t step = 0; step < path->size(); ++step) {
     v1::FollowRequest request = step == 0 ? first : v1::FollowRequest();

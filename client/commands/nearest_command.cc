@@ -73,7 +73,9 @@ void WriteCsv(std::ostream& out, const std::vector<Vec2>& positions,
 
 int RunLocal(const NearestArguments& arguments, const std::vector<Vec2>& positions,
              std::vector<NearestPoint>& results) {
-  StatusOr<World> world = ParseWorld(arguments.world);
+  StatusOr<World> parsed = ParseWorld(arguments.world);
+  if (!parsed.ok()) return ReportBadArguments("nearest", parsed.status());
+  StatusOr<World> world = NoiseBasisWorld(arguments.world.layers, *parsed);
   if (!world.ok()) return ReportBadArguments("nearest", world.status());
   StatusOr<PlaneEngineOptions> engine_options = ParseEngineOptions(arguments.world);
   if (!engine_options.ok()) return ReportBadArguments("nearest", engine_options.status());
@@ -92,6 +94,9 @@ int RunRemote(const NearestArguments& arguments, const std::vector<Vec2>& positi
   if (Status status = SetRequestWorld(arguments.remote, arguments.world, request); !status.ok()) {
     return ReportBadArguments("nearest", status);
   }
+  StatusOr<std::string> layer = SingleLayerName(arguments.world.layers);
+  if (!layer.ok()) return ReportBadArguments("nearest", layer.status());
+  request.set_layer(*layer);
   StatusOr<client::ScallopClient> connected =
       ConnectTo(arguments.remote.server, arguments.remote.connection);
   if (!connected.ok()) return ReportBadArguments("nearest", connected.status());

@@ -64,7 +64,14 @@ StatusOr<NoiseGridSpec> ParseSpec(const NoiseArguments& arguments, const Rect& r
 
 // The largest spacing of the world an answer names: d, or r_max with a
 // radius field (the distances' scale, docs/noise.md).
-double LargestSpacing(const v1::World& world) {
+// A world's (or with `layer`, that layer's) largest spacing as the message gives it.
+double LargestSpacing(const v1::World& world, const std::string& layer = {}) {
+  for (const v1::Layer& own : world.layers()) {
+    if (own.name() != layer) continue;
+    if (own.radius_field().has_noise()) return own.radius_field().noise().r_max();
+    if (own.radius_field().has_raster()) return own.radius_field().raster().r_max();
+    return own.min_distance();
+  }
   if (world.radius_field().has_noise()) return world.radius_field().noise().r_max();
   if (world.radius_field().has_raster()) return world.radius_field().raster().r_max();
   return world.min_distance();
@@ -112,10 +119,12 @@ int RunNoise(const NoiseArguments& arguments) {
     if (!query.ok()) return ReportBadArguments("noise", query.status());
     PlaneEngine engine(query->engine);
     NearestLookup lookup(engine);
-    StatusOr<NoiseImage> image = EvaluateNoiseGrid(lookup, query->world, *spec, kMaxLocalSamples);
+    StatusOr<World> world = NoiseBasisWorld(arguments.world.layers, query->world);
+    if (!world.ok()) return ReportBadArguments("noise", world.status());
+    StatusOr<NoiseImage> image = EvaluateNoiseGrid(lookup, *world, *spec, kMaxLocalSamples);
     if (!image.ok()) return ReportBadArguments("noise", image.status());
     noise = std::move(*image);
-    d = query->world.max_spacing();
+    d = world->max_spacing();
   } else {
     v1::NoiseGridRequest request;
     if (Status status = SetRequestWorld(arguments.remote, arguments.world, request); !status.ok()) {
@@ -127,6 +136,9 @@ int RunNoise(const NoiseArguments& arguments) {
     request.set_width(spec->width);
     request.set_height(spec->height);
     request.set_channel(NoiseChannelToMessage(spec->channel));
+    StatusOr<std::string> layer = SingleLayerName(arguments.world.layers);
+    if (!layer.ok()) return ReportBadArguments("noise", layer.status());
+    request.set_layer(*layer);
     StatusOr<client::ScallopClient> connected =
         ConnectTo(arguments.remote.server, arguments.remote.connection);
     if (!connected.ok()) return ReportBadArguments("noise", connected.status());
@@ -146,7 +158,7 @@ int RunNoise(const NoiseArguments& arguments) {
              .height = spec->height,
              .values = {response.values().begin(), response.values().end()},
              .ids = {response.ids().begin(), response.ids().end()}};
-    d = LargestSpacing(response.world());
+    d = LargestSpacing(response.world(), request.layer());
   }
   if (Status status = WritePng(arguments.png, Render(noise, spec->channel, d)); !status.ok()) {
     return ReportBadArguments("noise", status);

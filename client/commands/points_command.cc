@@ -27,6 +27,7 @@ int RunPoints(const PointsArguments& arguments) {
       !status.ok()) {
     return ReportBadArguments("points", status);
   }
+  SetRequestLayerFilter(arguments.world, request);
   request.set_page_size(arguments.page_size);
   request.set_encoding(arguments.encoding);
   StatusOr<client::ScallopClient> connected =

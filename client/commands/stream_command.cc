@@ -27,6 +27,7 @@ int RunStream(const StreamArguments& arguments) {
       !status.ok()) {
     return ReportBadArguments("stream", status);
   }
+  SetRequestLayerFilter(arguments.world, request);
   request.set_encoding(arguments.encoding);
   StatusOr<client::ScallopClient> connected =
       ConnectTo(arguments.remote.server, arguments.remote.connection);
@@ -36,7 +37,8 @@ int RunStream(const StreamArguments& arguments) {
   PlanePoints points;
   std::vector<double> radii;
   const bool incremental_csv = arguments.format == PointFormat::kCsv;
-  IncrementalCsv csv(std::cout, request.world().has_radius_field());
+  IncrementalCsv csv(std::cout, request.world().has_radius_field(),
+                     LayerNamesFrom(client, request, options));
   Status malformed;
   const grpc::Status status = client.StreamPoints(
       request,

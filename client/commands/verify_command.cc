@@ -15,6 +15,7 @@
 #include "client/options/world_options.h"
 #include "client/output/point_output.h"
 #include "scallop/plane/world_verifier.h"
+#include "verify_messages.h"
 
 namespace scallop::cli {
 namespace {
@@ -175,18 +176,9 @@ VerifyReport ReportFromMessage(const v1::VerifyResponse& response) {
   report.spacing_ok = response.spacing_ok();
   report.maximal_ok = response.maximal_ok();
   if (response.has_field()) {
-    const v1::FieldVerifyResponse& in = response.field();
-    FieldVerifyReport field;
-    field.conflicts = in.conflicts();
-    field.min_spacing_ratio = in.min_spacing_ratio();
-    field.largest_gap = in.largest_gap();
-    field.largest_gap_spot = {in.largest_gap_x(), in.largest_gap_y()};
-    field.gap_bound = in.gap_bound();
-    field.points_masked = in.points_masked();
-    field.conflict_ok = in.conflicts() == 0;
-    field.maximal_ok = response.maximal_ok();
-    report.field = field;
+    report.field = FieldVerifyFromMessage(response.field(), response.maximal_ok());
   }
+  if (response.has_layered()) report.layered = LayeredVerifyFromMessage(response.layered());
   return report;
 }
 
@@ -218,6 +210,18 @@ int RunRemoteVerify(const VerifyArguments& arguments) {
               {"raster_name", message.radius_field().raster().raster_name()}},
              message.min_distance(),
              {}};
+  } else if (message.layers_size() != 0) {
+    // A layer's raster is the server's: the world is named by its seed and its layers' names.
+    world = {
+        "seed=" + std::to_string(message.seed()) + " layers=[", {}, message.min_distance(), {}};
+    for (const v1::Layer& layer : message.layers()) {
+      world.description += (world.layer_names.empty() ? "" : " ") + layer.name();
+      world.layer_names.push_back(layer.name());
+    }
+    world.description += "]";
+    world.json = {{"seed", message.seed()},
+                  {"min_distance", message.min_distance()},
+                  {"layers", world.layer_names}};
   } else {
     return ReportCallFailure("verify", {grpc::StatusCode::INTERNAL, parsed.status().message()});
   }

@@ -6,6 +6,7 @@
 
 #include "client/options/field_options.h"
 #include "client/options/rect_option.h"
+#include "field_messages.h"
 #include "scallop/plane/world_layers.h"
 
 namespace scallop::cli {
@@ -70,9 +71,11 @@ void AddLayerOptions(CLI::App& command, LayerArguments& arguments) {
       ->type_name("NAME,NAME=DISTANCE")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->needs(layer);
-  command.add_option("--layers", arguments.filter, "Only these layers' points")
-      ->type_name("NAME[,NAME]")
-      ->needs(layer);
+  // Not tied to --layer: a layered world may come from --world-file or a server's --world.
+  command
+      .add_option("--layers", arguments.filter,
+                  "Only these layers' points (nearest, noise: the one layer to answer for)")
+      ->type_name("NAME[,NAME]");
   for (const char* single : {"--min-distance", "--radius-noise", "--radius-raster"}) {
     if (CLI::Option* option = command.get_option_no_throw(single)) layer->excludes(option);
   }
@@ -129,8 +132,77 @@ StatusOr<std::vector<LayerExclusionSpec>> ParseExclusions(const LayerArguments& 
   return exclusions;
 }
 
+StatusOr<std::vector<v1::Layer>> ParseRemoteLayers(const LayerArguments& arguments) {
+  std::vector<v1::Layer> layers;
+  for (const std::string& text : arguments.layers) {
+    const size_t equals = text.find('=');
+    const std::string spacing = equals == std::string::npos ? "" : text.substr(equals + 1);
+    if (!spacing.starts_with("raster:")) {
+      StatusOr<std::vector<LayerSpec>> local =
+          ParseLayers({.layers = {text}, .exclusions = {}, .filter = {}});
+      if (!local.ok()) return local.status();
+      *layers.emplace_back().mutable_name() = (*local)[0].name;
+      layers.back().set_min_distance((*local)[0].min_distance);
+      if ((*local)[0].radius_field.has_value()) {
+        *layers.back().mutable_radius_field() =
+            RadiusFieldToMessage(*(*local)[0].radius_field, nullptr);
+      }
+      continue;
+    }
+    const std::string name = text.substr(0, equals);
+    StatusOr<FieldArguments> field = FieldOfLayer(name, spacing);
+    if (!field.ok()) return field.status();
+    StatusOr<std::optional<v1::RadiusField>> remote = ParseRemoteField(*field);
+    if (!remote.ok()) {
+      std::string message = remote.status().message();
+      message = message.substr(message.find(": ") + 2);
+      return InvalidArgument("--layer " + name + ": " + message);
+    }
+    v1::Layer& layer = layers.emplace_back();
+    layer.set_name(name);
+    *layer.mutable_radius_field() = **remote;
+  }
+  return layers;
+}
+
+std::vector<std::string> LayerFilterNames(const LayerArguments& arguments) {
+  if (arguments.filter.empty()) return {};
+  return Split(arguments.filter, ',');
+}
+
+StatusOr<std::string> SingleLayerName(const LayerArguments& arguments) {
+  const std::vector<std::string> names = LayerFilterNames(arguments);
+  if (names.size() > 1) {
+    return InvalidArgument("--layers: the noise basis is one layer's; name one, got '" +
+                           arguments.filter + "'");
+  }
+  return names.empty() ? std::string() : names[0];
+}
+
+StatusOr<World> NoiseBasisWorld(const LayerArguments& arguments, const World& world) {
+  StatusOr<std::string> name = SingleLayerName(arguments);
+  if (!name.ok()) return name.status();
+  const WorldLayers* layers = world.layers();
+  if (layers == nullptr) {
+    if (name->empty()) return world;
+    return InvalidArgument("--layers: the world has no layers");
+  }
+  std::string names;
+  for (int k = 0; k < layers->count(); ++k) names += (k == 0 ? "" : ",") + layers->name(k);
+  if (name->empty()) {
+    return InvalidArgument("--layers: a layered world's noise basis is one layer's; name one of " +
+                           names);
+  }
+  const int layer = layers->LayerNamed(*name);
+  if (layer < 0) return InvalidArgument("--layers: no layer named '" + *name + "' (" + names + ")");
+  return layers->world(layer);
+}
+
 StatusOr<LayerMask> ParseLayerFilter(const LayerArguments& arguments, const World& world) {
-  if (arguments.filter.empty() || world.layers() == nullptr) return kAllLayers;
+  if (arguments.filter.empty()) return kAllLayers;
+  if (world.layers() == nullptr) {
+    return InvalidArgument("--layers: the world has no layers");
+  }
   LayerMask mask = 0;
   for (const std::string& name : Split(arguments.filter, ',')) {
     const int layer = world.layers()->LayerNamed(name);

@@ -12,6 +12,7 @@
 #include "scallop/plane/layer_spec.h"
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/world.h"
+#include "scallop/v1/scallop.pb.h"
 
 namespace scallop::cli {
 
@@ -35,11 +36,28 @@ bool HasLayers(const LayerArguments& arguments);
 // ..."). The names and spacings' ranges are World::Create's to judge.
 StatusOr<std::vector<LayerSpec>> ParseLayers(const LayerArguments& arguments);
 
+// The layers as a request to scallopd carries them: a raster layer's FILE is the name of a
+// raster the server loaded (the server judges it), the others as ParseLayers reads them
+// (checked here). Errors as ParseLayers'.
+StatusOr<std::vector<v1::Layer>> ParseRemoteLayers(const LayerArguments& arguments);
+
 // The exclusions as specs; INVALID_ARGUMENT naming --exclusion for a malformed one.
 StatusOr<std::vector<LayerExclusionSpec>> ParseExclusions(const LayerArguments& arguments);
 
-// The layers --layers names in `world` (every layer when empty; all bits for a world without
-// layers, which takes no filter). INVALID_ARGUMENT naming --layers for an unknown name.
+// The layers --layers names in `world` (every layer when empty). INVALID_ARGUMENT naming
+// --layers for an unknown name, or names given for a world without layers.
 StatusOr<LayerMask> ParseLayerFilter(const LayerArguments& arguments, const World& world);
+
+// The world whose noise basis `nearest` and `noise` compute: `world` itself without layers (no
+// --layers allowed), else the world of the one layer --layers names (required), as scallopd's
+// Nearest answers for NearestRequest.layer. INVALID_ARGUMENT naming --layers otherwise.
+StatusOr<World> NoiseBasisWorld(const LayerArguments& arguments, const World& world);
+
+// --layers as names, for a request's filter (GetPointsRequest.layers), which the server checks.
+std::vector<std::string> LayerFilterNames(const LayerArguments& arguments);
+
+// The one layer --layers names, for Nearest and NoiseGrid (NearestRequest.layer): empty when
+// not given; INVALID_ARGUMENT naming --layers for more than one.
+StatusOr<std::string> SingleLayerName(const LayerArguments& arguments);
 
 }  // namespace scallop::cli

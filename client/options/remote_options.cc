@@ -1,6 +1,7 @@
 // Registration of the remote options and the call options they give.
 #include "client/options/remote_options.h"
 
+#include <algorithm>
 #include <map>
 #include <string>
 
@@ -15,8 +16,9 @@ void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server
   CLI::Option* world =
       command.add_option("--world", arguments.world_name, "A world configured on the server");
   if (server_optional) world->needs(server);
-  for (const char* inline_option : {"--seed", "--min-distance", "--algorithm", "--density",
-                                    "--radius-noise", "--radius-raster"}) {
+  for (const char* inline_option :
+       {"--seed", "--min-distance", "--algorithm", "--density", "--radius-noise", "--radius-raster",
+        "--layer", "--exclusion", "--world-file"}) {
     if (CLI::Option* option = command.get_option_no_throw(inline_option)) world->excludes(option);
   }
   command.add_option("--timeout", arguments.timeout_seconds, "Deadline of each call, seconds")
@@ -25,15 +27,51 @@ void AddRemoteOptions(CLI::App& command, RemoteArguments& arguments, bool server
   AddConnectionOptions(command, arguments.connection);
 }
 
+namespace {
+
+// A layered world for a request: a raster layer names the server's raster (judged there, as
+// --radius-raster is); without one, the whole world is checked here first, so bad values exit
+// 2 without a call.
+StatusOr<v1::World> RemoteLayeredWorld(const WorldArguments& world) {
+  StatusOr<std::vector<v1::Layer>> layers = ParseRemoteLayers(world.layers);
+  if (!layers.ok()) return layers.status();
+  const bool named_raster = std::any_of(layers->begin(), layers->end(), [](const v1::Layer& l) {
+    return l.radius_field().has_raster();
+  });
+  if (!named_raster) {
+    StatusOr<World> parsed = ParseWorld(world);
+    if (!parsed.ok()) return parsed.status();
+    return WorldToMessage(parsed->spec());
+  }
+  StatusOr<uint64_t> seed = ParseSeed(world.seed);
+  if (!seed.ok()) return seed.status();
+  StatusOr<WorldAlgorithm> algorithm = ParseWorldAlgorithm(world.algorithm);
+  if (!algorithm.ok()) return algorithm.status();
+  StatusOr<std::vector<LayerExclusionSpec>> exclusions = ParseExclusions(world.layers);
+  if (!exclusions.ok()) return exclusions.status();
+  v1::World message = WorldToMessage(WorldSpec{.seed = *seed,
+                                               .algorithm = *algorithm,
+                                               .density = world.density,
+                                               .exclusions = std::move(*exclusions)});
+  for (v1::Layer& layer : *layers) *message.add_layers() = std::move(layer);
+  return message;
+}
+
+}  // namespace
+
 StatusOr<v1::World> RemoteWorld(const WorldArguments& world) {
-  // The World message has no layers yet (issue 19's API part): refuse rather than send a
-  // world without them.
   if (!world.world_file.empty()) {
-    return InvalidArgument("--world-file: local only for now (no --server)");
+    // The file's rasters are its own PNGs; a server knows its rasters by name.
+    if (!RasterPathsOfWorldFile(world.world_file).empty()) {
+      return InvalidArgument(
+          "--world-file: a raster field through --server names the server's raster: use --world "
+          "NAME or --layer NAME=raster:RASTER_NAME:...");
+    }
+    StatusOr<World> parsed = ParseWorld(world);
+    if (!parsed.ok()) return parsed.status();
+    return WorldToMessage(parsed->spec());
   }
-  if (HasLayers(world.layers)) {
-    return InvalidArgument("--layer: layered worlds are local only for now (no --server)");
-  }
+  if (HasLayers(world.layers)) return RemoteLayeredWorld(world);
   if (Status status = CheckFieldAlgorithm(world.field, world.algorithm); !status.ok()) {
     return status;
   }

@@ -54,6 +54,13 @@ Status SetRequestWorld(const RemoteArguments& remote, const WorldArguments& worl
   return Status::Ok();
 }
 
+// The request's layer filter from --layers (GetPoints, StreamPoints, Follow);
+// the server checks the names against the world.
+template <typename Request>
+void SetRequestLayerFilter(const WorldArguments& world, Request& request) {
+  for (const std::string& name : LayerFilterNames(world.layers)) request.add_layers(name);
+}
+
 // The request's world and --rect, checked as for `scallop plane`.
 template <typename Request>
 Status SetRequestWorldAndRect(const RemoteArguments& remote, const WorldArguments& world,

@@ -73,13 +73,21 @@ StatusOr<World> WorldFromFile(const std::string& path) {
       if (file.is_relative()) file = std::filesystem::path(path).parent_path() / file;
       if (Status loaded = rasters.Load(name, file.string(), where); !loaded.ok()) return loaded;
     }
-    return WorldFromYaml(node, rasters, where, /*allow_layers=*/true);
+    return WorldFromYaml(node, rasters, where);
   } catch (const YAML::Exception& e) {
     return InvalidArgument(where + ": " + e.what());
   }
 }
 
 }  // namespace
+
+std::vector<std::string> RasterPathsOfWorldFile(const std::string& path) {
+  try {
+    return RasterNamesInYaml(YAML::LoadFile(path));
+  } catch (const YAML::Exception&) {
+    return {};
+  }
+}
 
 StatusOr<World> ParseWorld(const WorldArguments& arguments) {
   if (!arguments.world_file.empty()) return WorldFromFile(arguments.world_file);

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "client/options/field_options.h"
 #include "client/options/layer_options.h"
@@ -55,6 +56,10 @@ StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments);
 // one way the CLI turns typed options into a World. A field's errors name its option
 // (ParseLocalField).
 StatusOr<World> ParseWorld(const WorldArguments& arguments);
+
+// The raster names (PNG paths) a --world-file's fields give, its own and its layers'; empty
+// when it has none or cannot be read (ParseWorld then says why).
+std::vector<std::string> RasterPathsOfWorldFile(const std::string& path);
 
 // --seed as typed: all of the text an integer in 0..2^64-1, else an error
 // naming --seed and the text.

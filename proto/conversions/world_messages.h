@@ -43,6 +43,10 @@ v1::Rect RectToMessage(const Rect& rect);
 void AppendPoints(const PlanePoints& points, size_t begin, size_t end, v1::Points& message,
                   const RadiusField* field = nullptr);
 
+// Whether a layered world's points carry radii: some layer has a radius field
+// (then every point's spacing in its layer goes with it, d for a constant layer).
+bool LayeredPointsCarryRadii(const World& world);
+
 // Appends points to the packed arrays of a message through plain pointers:
 // room for `capacity` points is made up front, and the destructor cuts the
 // arrays to the points appended. (add_xs() and the like check the capacity
@@ -54,20 +58,35 @@ void AppendPoints(const PlanePoints& points, size_t begin, size_t end, v1::Point
 class PointsAppender {
  public:
   PointsAppender(v1::Points& message, size_t capacity, const RadiusField* field = nullptr);
+  // Any world's points: a plain or field world's as above; a layered world's
+  // with each point's layer in layers (StartLayer says which) and, when
+  // LayeredPointsCarryRadii, its spacing in radii.
+  PointsAppender(v1::Points& message, size_t capacity, const World& world);
   ~PointsAppender();
   PointsAppender(const PointsAppender&) = delete;
   PointsAppender& operator=(const PointsAppender&) = delete;
+
+  // The points appended next are layer `layer`'s (-1: the world has no layers; nothing
+  // changes). REQUIRES: the layered world's constructor for layer >= 0.
+  void StartLayer(int layer);
 
   void Append(Vec2 position, uint64_t id) {
     xs_[count_] = position.x;
     ys_[count_] = position.y;
     ids_[count_] = id;
-    if (field_ != nullptr) radii_[count_] = field_->Evaluate(position);
+    if (field_ != nullptr) {
+      radii_[count_] = field_->Evaluate(position);
+    } else if (layer_world_ != nullptr) {
+      if (radii_ != nullptr) radii_[count_] = layer_world_->SpacingAt(position);
+      layers_[count_] = layer_;
+    }
     ++count_;
   }
   size_t count() const { return count_; }
 
  private:
+  void Reserve(size_t capacity, bool radii, bool layers);
+
   v1::Points& message_;
   int start_;  // the arrays' size before
   double* xs_;
@@ -75,6 +94,10 @@ class PointsAppender {
   uint64_t* ids_;
   const RadiusField* field_;
   double* radii_ = nullptr;
+  const World* world_ = nullptr;        // a layered world's
+  const World* layer_world_ = nullptr;  // the current layer's world (a layered world's)
+  uint32_t* layers_ = nullptr;
+  uint32_t layer_ = 0;
   // Not size_t: a store to ids_ (uint64_t, the same type as size_t here) could
   // alias it, so GCC reloaded and stored it between points, and a warm tile's
   // copy waited on that chain (bench/warm_answer_bench.cc). A message holds
@@ -85,9 +108,11 @@ class PointsAppender {
 // The message's points appended to `points`, and its radii to `radii` when
 // given, from the packed arrays or, when set, decoded from encoded
 // (encoded_points.h), so callers need not know which the request asked for.
-// INVALID_ARGUMENT when xs, ys and ids differ in length, radii is neither
-// empty nor one per point, both encoded and the packed arrays are set, or
-// encoded is malformed (naming its field).
+// A layered world's layers go to points.layers (from layers, or from each
+// encoded region's layer); for other worlds points.layers is left alone.
+// INVALID_ARGUMENT when xs, ys and ids differ in length, radii or layers is
+// neither empty nor one per point, a layer exceeds 255, both encoded and the
+// packed arrays are set, or encoded is malformed (naming its field).
 Status ReadPoints(const v1::Points& message, PlanePoints& points,
                   std::vector<double>* radii = nullptr);
 

@@ -71,9 +71,9 @@ Status CheckYamlKeys(const YAML::Node& node, const std::set<std::string>& known,
 }
 
 StatusOr<World> WorldFromYaml(const YAML::Node& node, const RasterCatalog& rasters,
-                              const std::string& where, bool allow_layers) {
-  std::set<std::string> known{"seed", "min_distance", "algorithm", "density", "radius_field"};
-  if (allow_layers) known.insert({"layers", "exclusions"});
+                              const std::string& where) {
+  const std::set<std::string> known{"seed",         "min_distance", "algorithm", "density",
+                                    "radius_field", "layers",       "exclusions"};
   if (Status keys = CheckYamlKeys(node, known, where); !keys.ok()) return keys;
   WorldSpec spec{.seed = node["seed"].as<uint64_t>(0),
                  .min_distance = node["min_distance"].as<double>(1.0),

@@ -25,10 +25,9 @@ Status CheckYamlKeys(const YAML::Node& node, const std::set<std::string>& known,
 // The world `node` describes, its rasters named in `rasters`. Errors are INVALID_ARGUMENT led by
 // `where` ("config.yaml: worlds.coast"): a key unknown, a field's value (`where`.radius_field.noise
 // .frequency, `where`.layers[1].radius_field...), or World::Create's message after `where`: ".
-// Without `allow_layers`, `layers` and `exclusions` are unknown keys. May throw YAML::Exception
-// for a value of the wrong type (the caller names the file).
+// May throw YAML::Exception for a value of the wrong type (the caller names the file).
 StatusOr<World> WorldFromYaml(const YAML::Node& node, const RasterCatalog& rasters,
-                              const std::string& where, bool allow_layers);
+                              const std::string& where);
 
 // Every raster_name the world's fields give (its own and its layers'), in order, for a reader
 // that loads rasters by path (`scallop --world-file`).

@@ -3,7 +3,9 @@
 // in docs/tiles.md). Plain JavaScript, no build step; scallopd embeds it.
 //
 // The view is (world, centre x, y, zoom z in pixels per d), kept in the URL's
-// fragment so a link reopens the same place. The noise background (F1,
+// fragment so a link reopens the same place. A layered world's points are
+// drawn in their layer's colour (the world list gives each layer's), with a
+// legend whose boxes show and hide layers (`hide=` in the fragment). The noise background (F1,
 // F2 - F1, cell id) is computed here from the tiles' points: every point
 // within 2 d of the screen is loaded, which is enough because F2 < 2 d on a
 // maximal Poisson-disk set (docs/noise.md).
@@ -31,9 +33,11 @@
     token: document.getElementById('token'),
     status: document.getElementById('status'),
     hover: document.getElementById('hover'),
+    layers: document.getElementById('layers'),
   };
 
-  const view = { world: '', x: 0, y: 0, z: 24, draw: 'dots', background: 'none', seams: false };
+  // hidden: names of a layered world's layers not drawn.
+  const view = { world: '', x: 0, y: 0, z: 24, draw: 'dots', background: 'none', seams: false, hidden: [] };
   let worlds = new Map();  // name -> the world list's entry
   let maxLevel = 0;
   let token = sessionStorage.getItem('scallop-token') || '';
@@ -53,6 +57,7 @@
     if (['dots', 'disks'].includes(fields.get('draw'))) view.draw = fields.get('draw');
     if (['none', 'f1', 'f2-f1', 'cell'].includes(fields.get('bg'))) view.background = fields.get('bg');
     if (fields.has('seams')) view.seams = fields.get('seams') === '1';
+    if (fields.has('hide')) view.hidden = fields.get('hide').split(',').filter((name) => name);
   }
 
   let fragmentTimer = 0;
@@ -63,6 +68,7 @@
         world: view.world, x: String(view.x), y: String(view.y), z: String(view.z),
         draw: view.draw, bg: view.background, seams: view.seams ? '1' : '0',
       });
+      if (view.hidden.length) fields.set('hide', view.hidden.join(','));
       history.replaceState(null, '', '#' + fields.toString());
     }, 150);
   }
@@ -180,6 +186,53 @@
 
   function idText(points, k) {
     return ((BigInt(points.idHigh[k]) << 32n) | BigInt(points.idLow[k])).toString();
+  }
+
+  // ---- Layers ----------------------------------------------------------
+
+  // The world's layers from the world list ([{name, colour, r_min, r_max}]), or [].
+  function layersOf() {
+    const world = worlds.get(view.world);
+    return (world && world.layers) || [];
+  }
+  // Per layer number: shown or not, and its colour as a little-endian RGBA word (ImageData).
+  function layerStyles() {
+    return layersOf().map((layer) => {
+      const rgb = parseInt(layer.colour.slice(1), 16);
+      return {
+        shown: !view.hidden.includes(layer.name),
+        colour: layer.colour,
+        word: (0xff000000 | ((rgb & 0xff) << 16) | (rgb & 0xff00) | (rgb >> 16)) >>> 0,
+      };
+    });
+  }
+  // The legend: one box a layer, in its colour; unticking one hides its points.
+  let legendWorld = null;
+  function syncLegend() {
+    const layers = layersOf();
+    controls.layers.hidden = layers.length === 0;
+    if (legendWorld !== view.world) {
+      legendWorld = view.world;
+      controls.layers.replaceChildren(...layers.map((layer) => {
+        const label = document.createElement('label');
+        const box = document.createElement('input');
+        box.type = 'checkbox';
+        box.dataset.layer = layer.name;
+        box.addEventListener('change', () => {
+          view.hidden = view.hidden.filter((name) => name !== layer.name);
+          if (!box.checked) view.hidden.push(layer.name);
+          requestRender();
+        });
+        const swatch = document.createElement('span');
+        swatch.className = 'swatch';
+        swatch.style.background = layer.colour;
+        label.append(box, swatch, ' ' + layer.name);
+        return label;
+      }));
+    }
+    for (const box of controls.layers.querySelectorAll('input')) {
+      box.checked = !view.hidden.includes(box.dataset.layer);
+    }
   }
 
   function headers() { return token ? { Authorization: 'Bearer ' + token } : {}; }
@@ -346,6 +399,11 @@
   }
 
   function pointId(k) { return idText(grid.owners[grid.tileOf[k]], grid.index[k]); }
+  // The layer of grid point k (its number in the world's order), or -1 without layers.
+  function layerOf(k) {
+    const points = grid.owners[grid.tileOf[k]];
+    return points.layers ? points.layers[grid.index[k]] : -1;
+  }
 
   // A colour (0xAABBGGRR, for a little-endian Uint32Array view of RGBA
   // bytes) a cell keeps wherever it is seen: a hash of its point's id.
@@ -481,14 +539,17 @@
     const dot = Math.max(2, Math.min(6, Math.round(0.24 * d * s))) * ratio;
     const shown = [];
     const dark = 0xff1b1b1b;
+    const styles = layerStyles();
     for (let k = 0; k < grid.n; ++k) {
       const x = grid.xs[k], y = grid.ys[k];
       if (x < rect[0] || x >= rect[2] || y < rect[1] || y >= rect[3]) continue;
+      const layer = layerOf(k);
+      if (layer >= 0 && !(styles[layer] && styles[layer].shown)) continue;
       shown.push(k);
       if (!disks) {
         const px = Math.round(((x - view.x) * s + width / 2) * ratio - dot / 2);
         const py = Math.round((height / 2 - (y - view.y) * s) * ratio - dot / 2);
-        fillPixels(px, py, px + dot, py + dot, dark);
+        fillPixels(px, py, px + dot, py + dot, layer >= 0 ? styles[layer].word : dark);
       }
     }
     if (!disks) {
@@ -500,21 +561,29 @@
     if (disks) {
       // Disks reach beyond the screen's edge: points just off it are drawn too.
       const radius = (d / 2) * s;
-      const path = new Path2D();
+      // One path a layer (a world without layers: one), each filled in its colour.
+      const paths = styles.length ? styles.map(() => new Path2D()) : [new Path2D()];
       for (let k = 0; k < grid.n; ++k) {
         const points = grid.owners[grid.tileOf[k]];
-        // A radius field's point is drawn at its own radius, when tiles carry one.
+        const layer = layerOf(k);
+        if (layer >= 0 && !(styles[layer] && styles[layer].shown)) continue;
+        // A radius field's point (or a layer's) is drawn at its own radius, when tiles carry one.
         const r = points.rs ? (points.rs[grid.index[k]] / 2) * s : radius;
         const px = (grid.xs[k] - view.x) * s + width / 2, py = height / 2 - (grid.ys[k] - view.y) * s;
         if (px < -r || px > width + r || py < -r || py > height + r) continue;
+        const path = paths[Math.max(0, layer)];
         path.moveTo(px + r, py);
         path.arc(px, py, r, 0, 2 * Math.PI);
       }
-      context.fillStyle = 'rgba(40, 90, 170, 0.35)';
-      context.fill(path);
-      context.strokeStyle = 'rgba(20, 50, 110, 0.9)';
-      context.lineWidth = 1;
-      context.stroke(path);
+      paths.forEach((path, layer) => {
+        context.globalAlpha = styles.length ? 0.45 : 1;
+        context.fillStyle = styles.length ? styles[layer].colour : 'rgba(40, 90, 170, 0.35)';
+        context.fill(path);
+        context.globalAlpha = 1;
+        context.strokeStyle = styles.length ? styles[layer].colour : 'rgba(20, 50, 110, 0.9)';
+        context.lineWidth = 1;
+        context.stroke(path);
+      });
     }
     if (view.seams) drawSeams(width, height);
 
@@ -606,7 +675,9 @@
       return;
     }
     const k = nearFirst;
-    controls.hover.textContent = `id ${pointId(k)}\nx  ${String(grid.xs[k])}\ny  ${String(grid.ys[k])}`;
+    const layer = layerOf(k);
+    const name = layer >= 0 && layersOf()[layer] ? `\nlayer ${layersOf()[layer].name}` : '';
+    controls.hover.textContent = `id ${pointId(k)}${name}\nx  ${String(grid.xs[k])}\ny  ${String(grid.ys[k])}`;
     controls.hover.style.left = `${px + 14}px`;
     controls.hover.style.top = `${py + 14}px`;
     controls.hover.hidden = false;
@@ -617,8 +688,14 @@
     controls.draw.value = view.draw;
     controls.background.value = view.background;
     controls.seams.checked = view.seams;
+    syncLegend();
   }
-  controls.world.addEventListener('change', () => { view.world = controls.world.value; requestRender(); });
+  controls.world.addEventListener('change', () => {
+    view.world = controls.world.value;
+    view.hidden = [];
+    syncLegend();
+    requestRender();
+  });
   controls.draw.addEventListener('change', () => { view.draw = controls.draw.value; requestRender(); });
   controls.background.addEventListener('change', () => { view.background = controls.background.value; requestRender(); });
   controls.seams.addEventListener('change', () => { view.seams = controls.seams.checked; requestRender(); });
@@ -665,14 +742,21 @@
       world: view.world, x: view.x, y: view.y, z: view.z, level: drawn.level, rect: drawn.rect,
       idle: drawn.idle && !renderPending, renderMilliseconds,
     }),
-    // The points drawn whose centres lie in state().rect: [{id, x, y}].
-    drawnPoints: () => drawn.shown.map((k) => ({ id: pointId(k), x: grid.xs[k], y: grid.ys[k] })),
+    // The points drawn whose centres lie in state().rect: [{id, x, y}], and a
+    // layered world's `layer` (its number) on each; hidden layers' are not drawn.
+    drawnPoints: () => drawn.shown.map((k) => {
+      const point = { id: pointId(k), x: grid.xs[k], y: grid.ys[k] };
+      if (layerOf(k) >= 0) point.layer = layerOf(k);
+      return point;
+    }),
     // What the background shows at (x, y): the nearest point's id, F1 and F2.
     nearest: (x, y) => {
       nearestTwo(x, y);
       return nearFirst < 0 ? null : { id: pointId(nearFirst), f1: nearF1, f2: nearF2 };
     },
     setView: (fields) => { Object.assign(view, fields); clampView(); syncControls(); requestRender(); },
+    // A layered world's layers as the page knows them: [{name, colour, shown}].
+    layers: () => layerStyles().map((style, k) => ({ name: layersOf()[k].name, colour: style.colour, shown: style.shown })),
     panBy, zoomAt,
   };
 

@@ -111,8 +111,8 @@ bad_config "typo in a field" "worlds.w.radius_field.noise: unknown key 'frequenc
   "worlds: {w: {radius_field: {noise: {r_min: 1, r_max: 4, frequence: 1}}}}"
 bad_config "field world on a1" "world.algorithm" \
   "worlds: {w: {algorithm: a1, radius_field: {noise: {r_min: 1, r_max: 2, frequency: 0.01}}}}"
-# Layered worlds are not served yet (the World message has no layers): refused by name.
-bad_config "layered world" "worlds.w: unknown key 'layers'" \
-  "worlds: {w: {layers: [{name: trees, min_distance: 8}]}}"
+# A layered world's bad layer stops it too, named (cli_layers_remote_test.sh serves good ones).
+bad_config "layer with a bad spacing" "worlds.w: world.layers[1].min_distance" \
+  "worlds: {w: {layers: [{name: trees, min_distance: 8}, {name: rocks, min_distance: -1}]}}"
 
 report cli_field_remote_test

@@ -6,7 +6,9 @@
 // worlds, out-of-range tiles, the area limit, load shedding and tokens get
 // their documented HTTP codes. A radius-field world's tiles carry each
 // point's R (JSON "rs", binary flag bit 0 and its array), equal to
-// GetPoints' radii, and its PNG draws disks of R/4.
+// GetPoints' radii, and its PNG draws disks of R/4. A layered world's tiles
+// carry each point's layer and spacing as GetPoints does, with ETags of
+// format version 4 while a plain world's stay version 3, and a colour PNG.
 #include <gtest/gtest.h>
 #include <png.h>
 
@@ -569,6 +571,104 @@ TEST(E2eHttpTileAuthTest, TilesNeedATokenForTheirWorld) {
   // The page itself holds no data: open.
   EXPECT_EQ(code("/", ""), 200);
   std::remove(tokens.c_str());
+}
+
+// Layered worlds' tiles (issue 19): every point's layer and spacing, in the
+// order and bits GetPoints gives them; ETags of tile format version 4 for
+// them alone, while a plain world's stay version 3's; the PNG in colour.
+class E2eLayeredTilesTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const std::string config = ::testing::TempDir() + "/e2e_layered_tiles_test.yaml";
+    std::ofstream out(config);
+    out << "worlds:\n"
+        << "  forest: {seed: 7, layers: [{name: trees, min_distance: 8},\n"
+        << "           {name: bushes, radius_field: {noise: {r_min: 2.5, r_max: 3.5,"
+           " frequency: 0.02}}}, {name: rocks, min_distance: 1.5}]}\n"
+        << "  coast: {seed: 7, min_distance: 1, algorithm: a3}\n";
+    out.close();
+    server_ =
+        ScallopdProcess::Start({"--config", config, "--http-listen", "127.0.0.1:0"}).release();
+    ASSERT_NE(server_, nullptr);
+    http_ = HttpAddress(*server_);
+    ASSERT_FALSE(http_.empty()) << server_->Log();
+  }
+  static void TearDownTestSuite() { delete server_; }
+
+  static inline ScallopdProcess* server_ = nullptr;
+  static inline std::string http_;
+};
+
+TEST_F(E2eLayeredTilesTest, TilesCarryEachPointsLayerAsGetPointsDoes) {
+  const std::string target = "/v1/worlds/forest/tiles/-1/0";
+  const HttpAnswer json = Fetch(http_, http::verb::get, target + ".json?level=1");
+  ASSERT_EQ(json.status, 200) << json.body;
+  const nlohmann::json tile = nlohmann::json::parse(json.body);
+  EXPECT_EQ(tile.at("layer_names"), nlohmann::json({"trees", "bushes", "rocks"}));
+  // The tile's rectangle by GetPoints: the same points, layers and spacings.
+  v1::GetPointsRequest request;
+  request.set_world_name("forest");
+  const auto rect = tile.at("rect").get<std::vector<double>>();
+  *request.mutable_rect() = RectToMessage({rect[0], rect[1], rect[2], rect[3]});
+  PlanePoints points;
+  std::vector<double> radii;
+  ASSERT_TRUE(server_->Client().GetAllPoints(request, points, {}, &radii).ok());
+  ASSERT_GT(points.ids.size(), 50u);
+  const auto layers = tile.at("layers").get<std::vector<int>>();
+  const auto rs = tile.at("rs").get<std::vector<double>>();
+  const auto xs = tile.at("xs").get<std::vector<double>>();
+  ASSERT_EQ(layers.size(), points.ids.size());
+  ASSERT_EQ(rs.size(), points.ids.size());
+  for (size_t k = 0; k < points.ids.size(); ++k) {
+    EXPECT_EQ(std::stoull(tile.at("ids")[k].get<std::string>()), points.ids[k]);
+    EXPECT_EQ(xs[k], points.positions[k].x);
+    EXPECT_EQ(layers[k], points.layers[k]);
+    EXPECT_EQ(rs[k], radii[k]);  // a field layer: GetPoints sends each point's spacing too
+  }
+  for (const int layer : {0, 1, 2}) {
+    EXPECT_NE(std::count(layers.begin(), layers.end(), layer), 0) << layer;
+  }
+  // Binary: flags rs and layers, 34 bytes a point, the same layers.
+  const HttpAnswer binary = Fetch(http_, http::verb::get, target + ".bin?level=1");
+  ASSERT_EQ(binary.status, 200);
+  const size_t n = points.ids.size();
+  EXPECT_EQ(ReadLittleEndian(binary.body, 6, 2), 3u);
+  ASSERT_EQ(binary.body.size(), 80 + 34 * n);
+  for (size_t k = 0; k < n; ++k) {
+    EXPECT_EQ(ReadDouble(binary.body, 80 + 24 * n + 8 * k), rs[k]);
+    EXPECT_EQ(ReadLittleEndian(binary.body, 80 + 32 * n + 2 * k, 2),
+              static_cast<uint64_t>(layers[k]));
+  }
+  // ETags: version 4 for the layered world, 3 (unchanged) for a plain one.
+  EXPECT_NE(json.headers.at("etag").find(".t4."), std::string::npos) << json.headers.at("etag");
+  const HttpAnswer plain = Fetch(http_, http::verb::get, "/v1/worlds/coast/tiles/0/0.bin");
+  EXPECT_NE(plain.headers.at("etag").find(".t3."), std::string::npos);
+  EXPECT_EQ(ReadLittleEndian(plain.body, 6, 2), 0u);
+  // The world list names the layers and their colours.
+  const nlohmann::json list =
+      nlohmann::json::parse(Fetch(http_, http::verb::get, "/v1/worlds").body);
+  for (const auto& world : list.at("worlds")) {
+    if (world.at("name") != "forest") continue;
+    ASSERT_EQ(world.at("layers").size(), 3u);
+    EXPECT_EQ(world.at("layers")[2].at("name"), "rocks");
+    EXPECT_EQ(world.at("tile_format_version"), 4);
+  }
+  // PNG: in colour, the trees' green among the pixels.
+  const HttpAnswer png = Fetch(http_, http::verb::get, target + ".png?level=1");
+  ASSERT_EQ(png.status, 200);
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  ASSERT_TRUE(png_image_begin_read_from_memory(&image, png.body.data(), png.body.size()));
+  EXPECT_EQ(image.format & PNG_FORMAT_FLAG_COLOR, PNG_FORMAT_FLAG_COLOR);
+  image.format = PNG_FORMAT_RGB;
+  std::vector<uint8_t> pixels(PNG_IMAGE_SIZE(image));
+  ASSERT_TRUE(png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr));
+  int green = 0;
+  for (size_t p = 0; p + 2 < pixels.size(); p += 3) {
+    green += pixels[p] == 0x2e && pixels[p + 1] == 0x7d && pixels[p + 2] == 0x32;
+  }
+  EXPECT_GT(green, 0);
 }
 
 }  // namespace

@@ -2,7 +2,9 @@
 """The web viewer (issue 21) in headless Chromium against a real scallopd:
 opened from a link, panned by a mouse drag and zoomed by the wheel, it must
 draw exactly the tiles' points in its view (fetched here as JSON tiles, a
-decoder the page does not share), a radius-field world's too, show a point's
+decoder the page does not share), a radius-field world's too, and a layered
+world's layer by layer (each drawn point's layer is its tile's, a hidden layer
+is not drawn, the legend lists the layers in their colours), show a point's
 id on hover, keep the view in the URL so the link reopens it, and leave a
 screenshot that is not blank.
 
@@ -36,7 +38,11 @@ def fail(message):
 # 6 r_max = 6 a side at level 0.
 FIELD_CONFIG = """worlds:
   dunes: {seed: 4, radius_field: {noise: {r_min: 0.25, r_max: 1, frequency: 0.1, noise_seed: 9}}}
+  forest: {seed: 7, layers: [{name: trees, min_distance: 4}, {name: bushes, min_distance: 1.5},
+                             {name: rocks, min_distance: 0.75}]}
 """
+# The layered world's smallest spacing: its tiles are 16 of it a side at level 0.
+FOREST_D = 0.75
 FIELD_R_MAX = 1.0
 
 
@@ -53,21 +59,70 @@ def start_scallopd(scallopd, log, config):
     fail("scallopd printed no http address")
 
 
-def tile_points(http, world, d, level, rect, region_side=None):
-    """The points of the JSON tiles overlapping rect that lie in it, by id (tiles of level 0
-    are regions: 16 d, or region_side for a radius-field world)."""
+def tiles_over(http, world, d, level, rect, region_side=None):
+    """The JSON tiles overlapping rect (tiles of level 0 are regions: 16 d, or region_side for a
+    radius-field world)."""
     side = (region_side or REGION_SIDE_IN_D * d) * 2 ** level
-    points = {}
     for j in range(math.floor(rect[1] / side), math.floor(rect[3] / side) + 1):
         for i in range(math.floor(rect[0] / side), math.floor(rect[2] / side) + 1):
             url = f"http://{http}/v1/worlds/{world}/tiles/{i}/{j}.json?level={level}"
             with urllib.request.urlopen(url, timeout=20) as answer:
-                tile = json.load(answer)
-            for k, identifier in enumerate(tile["ids"]):
-                x, y = tile["xs"][k], tile["ys"][k]
-                if rect[0] <= x < rect[2] and rect[1] <= y < rect[3]:
-                    points[identifier] = (x, y)
+                yield json.load(answer)
+
+
+def tile_points(http, world, d, level, rect, region_side=None):
+    """The points of the JSON tiles overlapping rect that lie in it, by id."""
+    points = {}
+    for tile in tiles_over(http, world, d, level, rect, region_side):
+        for k, identifier in enumerate(tile["ids"]):
+            x, y = tile["xs"][k], tile["ys"][k]
+            if rect[0] <= x < rect[2] and rect[1] <= y < rect[3]:
+                points[identifier] = (x, y)
     return points
+
+
+def layered_tile_points(http, world, d, level, rect):
+    """A layered world's JSON tiles' points in rect, by (layer name, id)."""
+    points = {}
+    for tile in tiles_over(http, world, d, level, rect):
+        for k, identifier in enumerate(tile["ids"]):
+            x, y = tile["xs"][k], tile["ys"][k]
+            if rect[0] <= x < rect[2] and rect[1] <= y < rect[3]:
+                points[(tile["layer_names"][tile["layers"][k]], identifier)] = (x, y)
+    return points
+
+
+def check_layers(driver, http):
+    """A layered world: every drawn point is its tile's, with the tile's layer, layer by layer;
+    hiding a layer by its legend box removes exactly its points."""
+    driver.execute_script("window.scallopViewer.setView({world: 'forest', x: 3.25, y: -7.5, z: 20,"
+                          " draw: 'dots', background: 'none', hidden: []})")
+    for hidden in ([], ["bushes"]):
+        if hidden:
+            box = driver.find_element(By.CSS_SELECTOR, "#layers input[data-layer='bushes']")
+            box.click()
+        state = wait_idle(driver, f"layered world, hidden {hidden}")
+        names = [layer["name"] for layer in driver.execute_script("return window.scallopViewer.layers()")]
+        if names != ["trees", "bushes", "rocks"]:
+            fail(f"the legend lists {names}")
+        drawn = {(names[p["layer"]], p["id"]): (p["x"], p["y"]) for p in
+                 driver.execute_script("return window.scallopViewer.drawnPoints()")}
+        expected = {key: value for key, value in
+                    layered_tile_points(http, "forest", FOREST_D, state["level"], state["rect"]).items()
+                    if key[0] not in hidden}
+        for layer in ("trees", "bushes", "rocks"):
+            mine = {key: value for key, value in drawn.items() if key[0] == layer}
+            theirs = {key: value for key, value in expected.items() if key[0] == layer}
+            if mine != theirs:
+                fail(f"layer {layer} (hidden {hidden}): drawn {len(mine)} points, tiles {len(theirs)}")
+            if layer not in hidden and len(theirs) < 5:
+                fail(f"layer {layer}: only {len(theirs)} points in view, too few to judge")
+        print(f"layered world, hidden {hidden}: {len(drawn)} points drawn = the tiles' points, "
+              "layer by layer")
+    if "hide=bushes" not in driver.current_url:
+        time.sleep(0.3)
+        if "hide=bushes" not in driver.current_url:
+            fail(f"the URL does not hold the hidden layer: {driver.current_url}")
 
 
 def wait_idle(driver, what, timeout=20):
@@ -225,6 +280,10 @@ def main():
         errors = [entry for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
         if errors:
             fail(f"the page logged errors on the field world: {errors}")
+        check_layers(driver, http)
+        errors = [entry for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
+        if errors:
+            fail(f"the page logged errors on the layered world: {errors}")
     finally:
         driver.quit()
         server.terminate()

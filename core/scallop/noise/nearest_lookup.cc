@@ -168,9 +168,11 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   if (results.size() != positions.size()) {
     return InvalidArgument("results: must have one entry per position");
   }
-  // A layered world's answer is per layer, each layer a world of its own: not done yet.
+  // A layered world's basis is per layer, each layer a world of its own (its points and ids).
   if (world.layers() != nullptr) {
-    return InvalidArgument("world.layers: Nearest and NoiseGrid do not take layered worlds yet");
+    return InvalidArgument(
+        "world.layers: the noise basis is a layer's; ask for one layer (its world, "
+        "WorldLayers::world)");
   }
   // ValidatePosition's test inline; the call only to name a bad position.
   const double limit = RegionLayout(world).precision_limit();
