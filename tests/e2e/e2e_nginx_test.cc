@@ -66,6 +66,19 @@ std::vector<AccessLine> ParseAccessLog(const std::string& text) {
   return lines;
 }
 
+// nginx's access log once it holds at least `count` lines, polled for 10 s (then as it is):
+// nginx writes a call's line after the call ends, which under load can be after the client
+// has its answer.
+std::vector<AccessLine> AccessLogOnceItHas(const NginxProcess& nginx, size_t count) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  std::vector<AccessLine> lines = ParseAccessLog(nginx.ReadFile("scallop-grpc.log"));
+  while (lines.size() < count && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    lines = ParseAccessLog(nginx.ReadFile("scallop-grpc.log"));
+  }
+  return lines;
+}
+
 v1::GetPointsRequest PointsRequest(const std::string& world, const Rect& rect, int page_size = 0) {
   v1::GetPointsRequest request;
   request.set_world_name(world);
@@ -203,8 +216,9 @@ TEST_F(E2eNginxTest, PagesFromDifferentReplicasJoinUp) {
   EXPECT_EQ(got.positions, expected.positions);
 
   // nginx writes a call's line when it ends: these are our pages, in order.
-  const std::vector<AccessLine> lines = ParseAccessLog(nginx_->ReadFile("scallop-grpc.log"));
-  ASSERT_EQ(lines.size() - lines_before, (expected.ids.size() + 96) / 97);
+  const size_t pages = (expected.ids.size() + 96) / 97;
+  const std::vector<AccessLine> lines = AccessLogOnceItHas(*nginx_, lines_before + pages);
+  ASSERT_EQ(lines.size() - lines_before, pages);
   std::set<std::string> upstreams;
   for (size_t k = lines_before; k < lines.size(); ++k) {
     EXPECT_EQ(lines[k].method, "GetPoints");
@@ -283,7 +297,7 @@ size_t ConnectionsForCalls(const NginxProcess& nginx, int calls) {
     v1::GetServerInfoResponse info;
     EXPECT_TRUE(client.GetServerInfo(info).ok()) << "call " << call;
   }
-  std::vector<AccessLine> lines = ParseAccessLog(nginx.ReadFile("scallop-grpc.log"));
+  std::vector<AccessLine> lines = AccessLogOnceItHas(nginx, before + static_cast<size_t>(calls));
   std::set<std::string> connections;
   for (size_t k = before; k < lines.size(); ++k) connections.insert(lines[k].connection);
   return connections.size();
