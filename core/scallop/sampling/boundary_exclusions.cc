@@ -26,7 +26,7 @@ const DiskBins* TableFor(double disk, double disk_cut, double circle, double cir
 
 BoundaryExclusions::BoundaryExclusions(std::span<const ExclusionDisk> disks, double min_distance,
                                        double spacing, double max_abs_coordinate)
-    : min_distance_(min_distance), spacing_(spacing) {
+    : spacing_(spacing) {
   std::vector<Disk> given;
   for (const ExclusionDisk& disk : disks) {
     if (!(disk.radius > 0.0)) continue;

@@ -100,7 +100,7 @@ class BoundaryExclusions {
 
   std::vector<Radius> radii_;
   std::vector<Disk> disks_;  // by cell, then as given
-  double min_distance_, spacing_;
+  double spacing_;
   double largest_cut_ = 0.0;
   // Disks filed in square cells of side largest_cut_: cell c holds disks
   // [cell_start_[c], cell_start_[c + 1]).
