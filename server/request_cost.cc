@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "scallop/noise/nearest_lookup.h"
 #include "scallop/plane/layer_regions.h"
@@ -28,7 +29,12 @@ bool ResolveLayerWorld(const WorldRegistry& worlds, const Request& request, Worl
   if (!ResolveWorld(worlds, request, world)) return false;
   int layer = -1;
   if (!LayerChoiceOf(world, request.layer(), "layer", layer).ok()) return false;
-  if (layer >= 0) world = WorldOfLayer(world, layer);
+  if (layer >= 0) {
+    // Copied out first: the layer's world is owned by `world`, which the assignment replaces
+    // (assigning it in place read it after its owner freed it; ASan caught it).
+    World own = WorldOfLayer(world, layer);
+    world = std::move(own);
+  }
   return true;
 }
 
