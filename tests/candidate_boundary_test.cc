@@ -346,6 +346,35 @@ TEST(DiskArcTest, DiskBinsHoldForTheArcsComputed) {
   EXPECT_EQ(DiskBins::ForRatio(DiskBins::kMaxRatio * 1.01), nullptr);
 }
 
+// Fewer than `bound` disks (radii 0.88, 0.6 and 2.5, the last without a table) near the circle
+// of radius about 1 about `centre`, some holding it whole.
+std::vector<ExclusionDisk> RandomDisks(Rng& rng, Vec2 centre, uint64_t bound) {
+  std::vector<ExclusionDisk> disks;
+  const double radii[] = {0.88, 0.6, 2.5};
+  const int count = static_cast<int>(rng.Below(bound));
+  for (int n = 0; n < count; ++n) {
+    const double r = radii[rng.Below(3)];
+    const double angle = rng.Uniform(0, 7), length = rng.Uniform(0.2, 1.2) * (1 + r);
+    disks.push_back(
+        {{centre.x + length * std::cos(angle), centre.y + length * std::sin(angle)}, r});
+  }
+  return disks;
+}
+
+// Cuts from `boundary` (of the circle of radius `spacing` about `centre`) the arc of every disk
+// but `skip`, computed by the second intersection rule, one by one.
+void CutEveryDisk(const BoundaryExclusions& exclusions, Vec2 centre, double spacing,
+                  AvailableBoundary& boundary, size_t skip = SIZE_MAX) {
+  for (size_t k = 0; k < exclusions.size(); ++k) {
+    KeyArc arc{0, 0};
+    const DiskCover cover = k == skip ? DiskCover::kNone
+                                      : CoveredArcOfCircle(exclusions.centre(k) - centre, spacing,
+                                                           exclusions.cut_radius(k), arc);
+    if (cover == DiskCover::kWhole) boundary.Clear();
+    if (cover == DiskCover::kArc) boundary.SubtractArc(arc.from_key, arc.to_key);
+  }
+}
+
 // BoundaryExclusions cuts from a point's circle exactly what cutting every disk's arc would, by
 // tables or not (radii with and without one), far from the origin too; leaving a disk out is
 // caught.
@@ -357,16 +386,7 @@ TEST(DiskArcTest, CutAroundPointLeavesTheRangesOfCuttingEveryArc) {
     const Vec2 centre = {far + rng.Uniform(-50, 50), rng.Uniform(-50, 50)};
     const double max_abs = std::abs(centre.x) + 60;
     const double spacing = SpacingFor(d, max_abs);
-    std::vector<ExclusionDisk> disks;
-    const double radii[] = {0.88, 0.6, 2.5};  // the last has no table
-    const int count = static_cast<int>(rng.Below(9));
-    for (int n = 0; n < count; ++n) {
-      const double r = radii[rng.Below(3)];
-      const double angle = rng.Uniform(0, 7), length = rng.Uniform(0.2, 1.2) * (1 + r);
-      disks.push_back(
-          {{centre.x + length * std::cos(angle), centre.y + length * std::sin(angle)}, r});
-    }
-    BoundaryExclusions exclusions(disks, d, spacing, max_abs);
+    BoundaryExclusions exclusions(RandomDisks(rng, centre, 9), d, spacing, max_abs);
     AvailableBoundary start;
     start.Reset();
     if (rng.Uniform() < 0.5) start.SubtractArc(AwkwardKey(rng), AwkwardKey(rng));
@@ -374,15 +394,7 @@ TEST(DiskArcTest, CutAroundPointLeavesTheRangesOfCuttingEveryArc) {
     exclusions.CutAroundPoint(centre, built);
     const auto cut_every = [&](size_t skip) {
       AvailableBoundary expected = start;
-      for (size_t k = 0; k < exclusions.size(); ++k) {
-        KeyArc arc{0, 0};
-        const DiskCover cover = k == skip
-                                    ? DiskCover::kNone
-                                    : CoveredArcOfCircle(exclusions.centre(k) - centre, spacing,
-                                                         exclusions.cut_radius(k), arc);
-        if (cover == DiskCover::kWhole) expected.Clear();
-        if (cover == DiskCover::kArc) expected.SubtractArc(arc.from_key, arc.to_key);
-      }
+      CutEveryDisk(exclusions, centre, spacing, expected, skip);
       return expected;
     };
     ASSERT_TRUE(SameRanges(built, cut_every(SIZE_MAX))) << "trial " << trial;
@@ -396,6 +408,49 @@ TEST(DiskArcTest, CutAroundPointLeavesTheRangesOfCuttingEveryArc) {
   EXPECT_GT(empty, 200);
   EXPECT_GT(with_ranges, 1000);
   EXPECT_GT(caught, tried / 4);
+}
+
+// A point's circle in a layered run: the disks' whole bins dropped with the points' in Build
+// (covered_later), then the disks' arcs cut, leaves what cutting every arc (points', disks',
+// the domain's) leaves. Dropping one bin too many (a disk's bins turned by one) is caught.
+TEST(DiskArcTest, DisksBinsDroppedInBuildLeaveTheRangesOfCuttingEveryArc) {
+  Rng rng(24);
+  int empty = 0, with_ranges = 0, caught = 0, tried = 0;
+  for (int trial = 0; trial < 6000; ++trial) {
+    // Scenes lie within 1e3 + 3e6 spacings of the origin.
+    const double d = 1.0, max_abs = 4e6;
+    const double spacing = SpacingFor(d, max_abs);
+    const Scene scene = RandomScene(rng, spacing);
+    BoundaryExclusions exclusions(RandomDisks(rng, scene.centre, 6), d, spacing, max_abs);
+    CandidateBoundary builder(spacing);
+    AvailableBoundary built;
+    if (exclusions.GatherAroundPoint(scene.centre)) {
+      builder.Build(scene.centre, scene.other_arcs, scene.neighbours, built,
+                    exclusions.GatheredCoveredBins());
+      if (!built.empty()) exclusions.CutGathered(built);
+    } else {
+      built.Clear();
+    }
+    AvailableBoundary expected = CutEveryArc(scene, spacing);
+    CutEveryDisk(exclusions, scene.centre, spacing, expected);
+    ASSERT_TRUE(SameRanges(built, expected)) << "trial " << trial;
+    empty += built.empty();
+    with_ranges += !built.empty();
+    // The planted fault: a disk's whole bins one bin off.
+    const uint64_t covered = exclusions.GatheredCoveredBins();
+    if (covered != 0 && covered != ~uint64_t{0} && exclusions.GatherAroundPoint(scene.centre)) {
+      ++tried;
+      AvailableBoundary planted;
+      builder.Build(scene.centre, scene.other_arcs, scene.neighbours, planted,
+                    std::rotl(covered, 1));
+      if (!planted.empty()) exclusions.CutGathered(planted);
+      caught += !SameRanges(planted, expected);
+    }
+  }
+  EXPECT_GT(empty, 500);
+  EXPECT_GT(with_ranges, 1500);
+  EXPECT_GT(tried, 500);
+  EXPECT_GT(caught, tried / 10);
 }
 
 }  // namespace

@@ -103,11 +103,11 @@ bool BoundaryExclusions::Around(Vec2 centre, double circle, const DiskBins* cons
   near_.clear();
   if (disks_.empty()) return true;
   // Cells clamped to the grid: every centre lies in it, so the clamped range still holds each
-  // centre within reach. Floor, not truncation: offsets may be negative here.
+  // centre within reach. Clamped first, truncation is floor (std::floor is a libm call here).
   const double reach = circle + largest_cut_, scale = 16.0 / circle;
   const auto index = [&](double offset, int64_t count) {
-    const double cell = std::floor(offset * inverse_cell_);
-    return static_cast<int64_t>(std::clamp(cell, 0.0, static_cast<double>(count - 1)));
+    return static_cast<int64_t>(
+        std::clamp(offset * inverse_cell_, 0.0, static_cast<double>(count - 1)));
   };
   const int64_t c0 = index(centre.x - reach - origin_.x, columns_);
   const int64_t c1 = index(centre.x + reach - origin_.x, columns_);
@@ -157,14 +157,6 @@ void BoundaryExclusions::Cut(AvailableBoundary& boundary) const {
     if (cover == DiskCover::kWhole) boundary.Clear();
     if (cover == DiskCover::kArc) boundary.SubtractArc(arc.from_key, arc.to_key);
   }
-}
-
-void BoundaryExclusions::CutAroundPoint(Vec2 centre, AvailableBoundary& boundary) {
-  if (!Around(centre, spacing_, from_point_.data(), SIZE_MAX)) {
-    boundary.Clear();
-    return;
-  }
-  Cut(boundary);
 }
 
 void BoundaryExclusions::CutAroundDisk(size_t k, std::span<const Vec2> points,

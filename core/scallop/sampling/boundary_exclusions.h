@@ -50,7 +50,28 @@ class BoundaryExclusions {
   // an arc is computed only if it may meet a bin the ranges meet, and the bins a disk covers
   // whole (DiskBins' table for its ratio, where it has one) are cut as they are.
   // O(disks near the circle + ranges x exact cuts).
-  void CutAroundPoint(Vec2 centre, AvailableBoundary& boundary);
+  void CutAroundPoint(Vec2 centre, AvailableBoundary& boundary) {
+    if (GatherAroundPoint(centre)) {
+      Cut(boundary);
+    } else {
+      boundary.Clear();
+    }
+  }
+
+  // CutAroundPoint in two steps, so that the disks' whole bins can be dropped before the
+  // points' arcs are cut (CandidateBoundary::Build's covered_later): first the disks near the
+  // circle, remembered for the calls below and Excludes (false: one holds the whole circle)...
+  bool GatherAroundPoint(Vec2 centre) {
+    return Around(centre, spacing_, from_point_.data(), SIZE_MAX);
+  }
+  // ... the bins their arcs cover whole...
+  uint64_t GatheredCoveredBins() const {
+    uint64_t covered = 0;
+    for (const DiskArc& arc : arcs_) covered |= arc.bins.covered;
+    return covered;
+  }
+  // ... and their arcs removed from `boundary`, as CutAroundPoint removes them.
+  void CutGathered(AvailableBoundary& boundary) const { Cut(boundary); }
 
   // The same for the circle of disk k (its cut radius), with the other disks and the disks of
   // radius `spacing` about those of `points` within reach of it.
