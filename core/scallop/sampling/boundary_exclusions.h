@@ -20,11 +20,10 @@ namespace scallop {
 // itself, and what computing that arc takes when a bin left over needs it.
 struct DiskArc {
   ArcBins bins;
-  KeyArc arc;   // CoveredArcOfCircle(offset, circle_radius, disk_radius), when has_arc
   Vec2 offset;  // the disk's centre less the circle's
-  double circle_radius;
   double disk_radius;
-  bool has_arc;
+  // Where the arc (CoveredArcOfCircle) was computed already, into the exact arcs; -1: not yet.
+  int32_t exact;
 };
 
 // Not thread-safe: each query keeps what it found for the next calls.
@@ -42,7 +41,7 @@ class BoundaryExclusions {
   size_t size() const { return disks_.size(); }
   Vec2 centre(size_t k) const { return disks_[k].centre; }
   // The radius disk k is cut with, a hair above its D.
-  double cut_radius(size_t k) const { return radii_[disks_[k].radius].cut; }
+  double cut_radius(size_t k) const { return disks_[k].cut; }
 
   // Removes from `boundary`, the available part of the circle of radius `spacing` about
   // `centre` (a point's), the arcs the disks cover, and remembers the disks near it for
@@ -99,6 +98,7 @@ class BoundaryExclusions {
   };
   struct Disk {
     Vec2 centre;
+    double cut;       // radii_[radius].cut, here for the search
     uint32_t radius;  // into radii_
   };
 
@@ -111,13 +111,13 @@ class BoundaryExclusions {
   // Appends to arcs_ the arc of the circle (radius `circle`, table scale `scale` = 16 / circle)
   // that the disk of radius `disk_radius` at `offset` covers, by `table` or exactly. False: it
   // holds the whole circle.
-  bool AddArc(Vec2 offset, double circle, double scale, double disk_radius, const DiskBins* table) {
-    if (table == nullptr) return AddExactArc(offset, circle, disk_radius);
-    arcs_.push_back({table->Of(offset, scale), {0, 0}, offset, circle, disk_radius, false});
+  bool AddArc(Vec2 offset, double scale, double disk_radius, const DiskBins* table) {
+    if (table == nullptr) return AddExactArc(offset, disk_radius);
+    arcs_.push_back({table->Of(offset, scale), offset, disk_radius, -1});
     return true;
   }
   // AddArc without a table: the arc computed, and its bins from its keys.
-  [[gnu::noinline]] bool AddExactArc(Vec2 offset, double circle, double disk_radius);
+  [[gnu::noinline]] bool AddExactArc(Vec2 offset, double disk_radius);
 
   std::vector<Radius> radii_;
   std::vector<Disk> disks_;  // by cell, then as given
@@ -130,8 +130,13 @@ class BoundaryExclusions {
   int64_t columns_ = 0, rows_ = 0;
   std::vector<uint32_t> cell_start_;
   std::vector<const DiskBins*> from_point_;  // radii_[j].from_point, in one array
+  // What the last Around found: the radius of its circle, the arcs, and the disks near it,
+  // near_[0, near_count_) (room for every disk, so that they are filed without a branch each).
+  double circle_ = 0.0;
   std::vector<DiskArc> arcs_;
-  std::vector<uint32_t> near_;  // disks remembered for Excludes
+  std::vector<KeyArc> exact_arcs_;
+  std::vector<uint32_t> near_;
+  size_t near_count_ = 0;
 };
 
 }  // namespace scallop
