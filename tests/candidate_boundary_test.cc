@@ -361,6 +361,20 @@ std::vector<ExclusionDisk> RandomDisks(Rng& rng, Vec2 centre, uint64_t bound) {
   return disks;
 }
 
+// A circle's centre for trial `trial`, a quarter of them far from the origin, with the largest
+// coordinate of a run about it and the spacing of d = 1 there.
+struct Place {
+  Vec2 centre;
+  double max_abs;
+  double spacing;
+};
+Place RandomPlace(Rng& rng, int trial) {
+  const double far = trial % 4 == 0 ? 3e6 : 0.0;
+  const Vec2 centre = {far + rng.Uniform(-50, 50), rng.Uniform(-50, 50)};
+  const double max_abs = std::abs(centre.x) + 60;
+  return {centre, max_abs, SpacingFor(1.0, max_abs)};
+}
+
 // Cuts from `boundary` (of the circle of radius `spacing` about `centre`) the arc of every disk
 // but `skip`, computed by the second intersection rule, one by one.
 void CutEveryDisk(const BoundaryExclusions& exclusions, Vec2 centre, double spacing,
@@ -382,10 +396,8 @@ TEST(DiskArcTest, CutAroundPointLeavesTheRangesOfCuttingEveryArc) {
   Rng rng(23);
   int empty = 0, with_ranges = 0, caught = 0, tried = 0;
   for (int trial = 0; trial < 4000; ++trial) {
-    const double d = 1.0, far = trial % 4 == 0 ? 3e6 : 0.0;
-    const Vec2 centre = {far + rng.Uniform(-50, 50), rng.Uniform(-50, 50)};
-    const double max_abs = std::abs(centre.x) + 60;
-    const double spacing = SpacingFor(d, max_abs);
+    const double d = 1.0;
+    const auto [centre, max_abs, spacing] = RandomPlace(rng, trial);
     BoundaryExclusions exclusions(RandomDisks(rng, centre, 9), d, spacing, max_abs);
     AvailableBoundary start;
     start.Reset();
@@ -451,6 +463,72 @@ TEST(DiskArcTest, DisksBinsDroppedInBuildLeaveTheRangesOfCuttingEveryArc) {
   EXPECT_GT(with_ranges, 1500);
   EXPECT_GT(tried, 500);
   EXPECT_GT(caught, tried / 10);
+}
+
+// The circle of an exclusion disk (a pocket's edge) less the other disks' arcs and the points'
+// disks' (radius `spacing`) leaves what cutting every arc leaves, whether the points' bins settle
+// it before the disks are searched or not; leaving a point or a disk out is caught.
+TEST(DiskArcTest, CutAroundDiskLeavesTheRangesOfCuttingEveryArc) {
+  Rng rng(25);
+  int empty = 0, with_ranges = 0, caught = 0, tried = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const double d = 1.0;
+    const auto [centre, max_abs, spacing] = RandomPlace(rng, trial);
+    std::vector<ExclusionDisk> disks = RandomDisks(rng, centre, 6);
+    disks.push_back({centre, rng.Uniform() < 0.5 ? 0.88 : 2.5});
+    BoundaryExclusions exclusions(disks, d, spacing, max_abs);
+    size_t k = 0;  // the disk at `centre`, wherever filing put it
+    while (exclusions.centre(k) != centre) ++k;
+    const double radius = exclusions.cut_radius(k);
+    std::vector<Vec2> points;
+    const int count = static_cast<int>(rng.Below(10));
+    for (int n = 0; n < count; ++n) {
+      const double angle = rng.Uniform(0, 7), length = rng.Uniform(radius, radius + 1.1 * spacing);
+      points.push_back({centre.x + length * std::cos(angle), centre.y + length * std::sin(angle)});
+    }
+    AvailableBoundary start;
+    start.Reset();
+    if (rng.Uniform() < 0.5) start.SubtractArc(AwkwardKey(rng), AwkwardKey(rng));
+    AvailableBoundary built = start;
+    exclusions.CutAroundDisk(k, points, built);
+    const auto cut_every = [&](size_t skip_disk, size_t skip_point) {
+      AvailableBoundary expected = start;
+      for (size_t j = 0; j < exclusions.size(); ++j) {
+        KeyArc arc{0, 0};
+        const DiskCover cover = j == k || j == skip_disk
+                                    ? DiskCover::kNone
+                                    : CoveredArcOfCircle(exclusions.centre(j) - centre, radius,
+                                                         exclusions.cut_radius(j), arc);
+        if (cover == DiskCover::kWhole) expected.Clear();
+        if (cover == DiskCover::kArc) expected.SubtractArc(arc.from_key, arc.to_key);
+      }
+      for (size_t n = 0; n < points.size(); ++n) {
+        KeyArc arc{0, 0};
+        const DiskCover cover = n == skip_point
+                                    ? DiskCover::kNone
+                                    : CoveredArcOfCircle(points[n] - centre, radius, spacing, arc);
+        if (cover == DiskCover::kWhole) expected.Clear();
+        if (cover == DiskCover::kArc) expected.SubtractArc(arc.from_key, arc.to_key);
+      }
+      return expected;
+    };
+    ASSERT_TRUE(SameRanges(built, cut_every(SIZE_MAX, SIZE_MAX))) << "trial " << trial;
+    empty += built.empty();
+    with_ranges += !built.empty();
+    if (!points.empty()) {
+      ++tried;
+      caught += !SameRanges(built, cut_every(SIZE_MAX, rng.Below(points.size())));
+    }
+    if (exclusions.size() > 1) {
+      ++tried;
+      size_t skip = rng.Below(exclusions.size() - 1);
+      skip += skip >= k;
+      caught += !SameRanges(built, cut_every(skip, SIZE_MAX));
+    }
+  }
+  EXPECT_GT(empty, 400);
+  EXPECT_GT(with_ranges, 1500);
+  EXPECT_GT(caught, tried / 5);
 }
 
 }  // namespace

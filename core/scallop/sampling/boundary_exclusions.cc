@@ -97,13 +97,16 @@ bool BoundaryExclusions::AddExactArc(Vec2 offset, double disk_radius) {
   return true;
 }
 
-bool BoundaryExclusions::Around(Vec2 centre, double circle, const DiskBins* const* tables,
-                                size_t skip) {
+void BoundaryExclusions::StartSearch(double circle) {
   arcs_.clear();
   exact_arcs_.clear();
   near_count_ = 0;
   circle_ = circle;
+}
+
+bool BoundaryExclusions::AddDisksNear(Vec2 centre, const DiskBins* const* tables, size_t skip) {
   if (disks_.empty()) return true;
+  const double circle = circle_;
   // Cells clamped to the grid: every centre lies in it, so the clamped range still holds each
   // centre within reach. Clamped first, truncation is floor (std::floor is a libm call here).
   const double reach = circle + largest_cut_, scale = 16.0 / circle;
@@ -169,13 +172,18 @@ void BoundaryExclusions::CutAroundDisk(size_t k, std::span<const Vec2> points,
                                        AvailableBoundary& boundary) {
   const Vec2 centre = disks_[k].centre;
   const Radius& circle = radii_[disks_[k].radius];
-  bool whole = !Around(centre, circle.cut, circle.from_disk.data(), k);
+  StartSearch(circle.cut);
+  // The points' arcs first: they cover nearly every disk's circle (by their bins alone), and
+  // then the other disks are not searched.
+  bool whole = false;
   const double meets = circle.cut + spacing_, scale = 16.0 / circle.cut;
   for (size_t n = 0; n < points.size() && !whole; ++n) {
     const Vec2 offset = points[n] - centre;
     if (SquaredLength(offset) >= meets * meets) continue;
     whole = !AddArc(offset, scale, spacing_, circle.point_from_here);
   }
+  whole = whole || (boundary.BinsMet() & ~GatheredCoveredBins()) == 0 ||
+          !AddDisksNear(centre, circle.from_disk.data(), k);
   if (whole) {
     boundary.Clear();
     return;

@@ -61,7 +61,8 @@ class BoundaryExclusions {
   // points' arcs are cut (CandidateBoundary::Build's covered_later): first the disks near the
   // circle, remembered for the calls below and Excludes (false: one holds the whole circle)...
   bool GatherAroundPoint(Vec2 centre) {
-    return Around(centre, spacing_, from_point_.data(), SIZE_MAX);
+    StartSearch(spacing_);
+    return AddDisksNear(centre, from_point_.data(), SIZE_MAX);
   }
   // ... the bins their arcs cover whole...
   uint64_t GatheredCoveredBins() const {
@@ -104,10 +105,11 @@ class BoundaryExclusions {
 
   // Removes the arcs of arcs_ from `boundary`, as CutAroundPoint says.
   void Cut(AvailableBoundary& boundary) const;
-  // Fills arcs_ and near_ with the disks (but `skip`) whose cut circle may meet the circle of
-  // radius `circle` about `centre`; `tables[j]` sees radius j's disks from it. False: one holds
-  // it whole.
-  bool Around(Vec2 centre, double circle, const DiskBins* const* tables, size_t skip);
+  // Empties arcs_ and near_ for a search about a circle of radius `circle`.
+  void StartSearch(double circle);
+  // Adds to arcs_ and near_ the disks (but `skip`) whose cut circle may meet the circle of the
+  // search about `centre`; `tables[j]` sees radius j's disks from it. False: one holds it whole.
+  bool AddDisksNear(Vec2 centre, const DiskBins* const* tables, size_t skip);
   // Appends to arcs_ the arc of the circle (radius `circle`, table scale `scale` = 16 / circle)
   // that the disk of radius `disk_radius` at `offset` covers, by `table` or exactly. False: it
   // holds the whole circle.
@@ -130,7 +132,7 @@ class BoundaryExclusions {
   int64_t columns_ = 0, rows_ = 0;
   std::vector<uint32_t> cell_start_;
   std::vector<const DiskBins*> from_point_;  // radii_[j].from_point, in one array
-  // What the last Around found: the radius of its circle, the arcs, and the disks near it,
+  // What the last search found: the radius of its circle, the arcs, and the disks near it,
   // near_[0, near_count_) (room for every disk, so that they are filed without a branch each).
   double circle_ = 0.0;
   std::vector<DiskArc> arcs_;
