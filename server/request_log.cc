@@ -15,14 +15,15 @@ void RequestLog::Finish(const grpc::Status& status) const {
   // lines the level drops.
   if (!spdlog::should_log(status.ok() ? spdlog::level::info : spdlog::level::warn)) return;
   const double milliseconds = seconds * 1000;
+  const std::string world = world_ ? world_->Describe() : "-";
   const std::string rect =
       rect_ ? fmt::format("[{},{})x[{},{})", rect_->x0, rect_->x1, rect_->y0, rect_->y1) : "-";
   if (status.ok()) {
-    spdlog::info("{} world=\"{}\" rect={} points={} ms={:.1f} code=OK", method_, world_, rect,
+    spdlog::info("{} world=\"{}\" rect={} points={} ms={:.1f} code=OK", method_, world, rect,
                  points_, milliseconds);
   } else {
     spdlog::warn("{} world=\"{}\" rect={} points={} ms={:.1f} code={} message=\"{}\"", method_,
-                 world_, rect, points_, milliseconds, StatusCodeName(status.error_code()),
+                 world, rect, points_, milliseconds, StatusCodeName(status.error_code()),
                  status.error_message());
   }
 }
