@@ -15,7 +15,9 @@ void RequestLog::Finish(const grpc::Status& status) const {
   // lines the level drops.
   if (!spdlog::should_log(status.ok() ? spdlog::level::info : spdlog::level::warn)) return;
   const double milliseconds = seconds * 1000;
-  const std::string world = world_ ? world_->Describe() : "-";
+  const std::string world = world_description_ != nullptr ? *world_description_
+                            : world_                      ? world_->Describe()
+                                                          : "-";
   const std::string rect =
       rect_ ? fmt::format("[{},{})x[{},{})", rect_->x0, rect_->x1, rect_->y0, rect_->y1) : "-";
   if (status.ok()) {

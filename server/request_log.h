@@ -24,7 +24,15 @@ class RequestLog {
   explicit RequestLog(std::string method, RequestMetrics* metrics = nullptr)
       : method_(std::move(method)), metrics_(metrics), start_(std::chrono::steady_clock::now()) {}
 
-  void set_world(const World& world) { world_ = world; }
+  // The call's world; `description` (may be null: made when the line is
+  // written) must then be world.Describe() and outlive the log.
+  void set_world(const World& world, const std::string* description = nullptr) {
+    if (description != nullptr) {
+      world_description_ = description;
+    } else {
+      world_ = world;
+    }
+  }
   void set_rect(const Rect& rect) { rect_ = rect; }
   void add_points(int64_t count) { points_ += count; }
 
@@ -35,7 +43,8 @@ class RequestLog {
   std::string method_;
   RequestMetrics* metrics_;
   std::chrono::steady_clock::time_point start_;
-  std::optional<World> world_;  // described when the line is written
+  const std::string* world_description_ = nullptr;
+  std::optional<World> world_;  // else described when the line is written
   std::optional<Rect> rect_;
   int64_t points_ = 0;
 };

@@ -19,6 +19,8 @@
 #include <string>
 
 #include "server/buffered_log_sink.h"
+#include "server/world_registry.h"
+#include "world_messages.h"
 
 namespace scallop::server {
 namespace {
@@ -83,6 +85,33 @@ TEST(RequestLogTest, AnAnsweredCallsLineHoldsEveryField) {
   EXPECT_NE(line.find(" rect=[-1.5,64)x[2,66.25) points=3497 ms="), std::string::npos) << line;
   EXPECT_NE(line.find(" code=OK\n"), std::string::npos) << line;
   EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << line;
+}
+
+// A configured world's line uses the description the registry made once; an
+// inline world's is made when the line is written; both are Describe()'s.
+TEST(RequestLogTest, ConfiguredAndInlineWorldsAreDescribedAlike) {
+  const World inline_world = *World::Create({.seed = 11, .algorithm = WorldAlgorithm::kA1});
+  const WorldRegistry registry({{"coast", kWorld}}, "coast");
+  v1::GetPointsRequest by_name;
+  by_name.set_world_name("coast");
+  v1::GetPointsRequest by_default;
+  v1::GetPointsRequest in_line;
+  *in_line.mutable_world() = WorldToMessage(inline_world);
+  for (const auto& [request, world] : {std::pair{by_name, kWorld}, std::pair{by_default, kWorld},
+                                       std::pair{in_line, inline_world}}) {
+    ResolvedWorld resolved;
+    ASSERT_TRUE(registry.Resolve(request, resolved).ok());
+    EXPECT_EQ(resolved.description == nullptr, request.has_world());
+    std::ostringstream out;
+    {
+      const CapturedLog captured(out, spdlog::level::info);
+      RequestLog log("GetPoints");
+      log.set_world(resolved.world, resolved.description);
+      log.Finish(grpc::Status::OK);
+    }
+    EXPECT_NE(out.str().find(" world=\"" + world.Describe() + "\" "), std::string::npos)
+        << out.str();
+  }
 }
 
 TEST(RequestLogTest, AFailedCallsLineNamesItsCodeAndMessageAtWarn) {
