@@ -1,8 +1,9 @@
 // The log sink of scallopd: lines gathered in memory and written to a file
 // descriptor (stderr) in batches, instead of a write(2) and a flush a line.
 // At info level every call leaves a line, and a warm GetPoints is answered in
-// tens of microseconds: writing each line on its own cost about a third of
-// that call's CPU. Lines reach the descriptor when the buffer fills, when
+// tens of microseconds: writing each line on its own (a write(2) a call) was
+// about 4% of scallopd's CPU under the warm load, some 6 us a call (perf).
+// Lines reach the descriptor when the buffer fills, when
 // the logger flushes (every second from main, and at once for warnings and
 // errors: spdlog's flush_on), and when the sink is destroyed.
 #pragma once
