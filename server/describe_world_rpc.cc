@@ -18,7 +18,7 @@ grpc::ServerUnaryReactor* ScallopService::DescribeWorld(grpc::CallbackServerCont
     if (grpc::Status status = shared_.worlds.Resolve(*request, resolved); !status.ok())
       return status;
     const World& world = resolved.world;
-    log.set_world(world.Describe());
+    log.set_world(world, resolved.description);
     const RegionLayout layout(world);
     *response->mutable_world() = shared_.worlds.ToMessage(world);
     response->set_name(resolved.name);

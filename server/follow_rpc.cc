@@ -191,7 +191,7 @@ class FollowReactor final
       if (!encoding.ok()) return ToGrpcStatus(encoding.status());
       encoding_ = *encoding;
       world_ = resolved.world;
-      log_.set_world(world_.Describe());
+      log_.set_world(world_, resolved.description);
       LayerMask mask = kAllLayers;
       if (grpc::Status status = LayerFilterOf(world_, request_.layers(), "layers", mask);
           !status.ok()) {

@@ -104,7 +104,7 @@ void HttpApi::AnswerTile(const HttpListener::Request& request, const std::string
             .rs = {},
             .layers = {},
             .layer_names = {}};
-  log->set_world(tile.world.Describe());
+  log->set_world(tile.world, resolved.description);
   log->set_rect(tile.rect);
   if (Status status = CheckQueryRect(
           tile.world, tile.rect,

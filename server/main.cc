@@ -6,8 +6,8 @@
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
-#include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <boost/asio/io_context.hpp>
@@ -19,6 +19,7 @@
 #include <set>
 #include <thread>
 
+#include "server/buffered_log_sink.h"
 #include "server/connection_limits.h"
 #include "server/http_api.h"
 #include "server/malloc_tuning.h"
@@ -207,9 +208,14 @@ int main(int argc, char** argv) {
   boost::asio::signal_set signals(signals_context, SIGINT, SIGTERM);
   scallop::server::TuneMallocForResponses();
   // Logs on stderr; stdout carries only the address line, for scripts and tests.
-  spdlog::set_default_logger(spdlog::stderr_logger_mt("scallopd"));
+  // Call lines are written in batches (buffered_log_sink.h): within a second,
+  // and warnings and errors at once.
+  spdlog::set_default_logger(std::make_shared<spdlog::logger>(
+      "scallopd", std::make_shared<scallop::server::BufferedLogSink>(STDERR_FILENO)));
   spdlog::set_level(
       spdlog::level::from_str(config.log_level));  // validated: never "off" by mistake
+  spdlog::flush_on(spdlog::level::warn);
+  spdlog::flush_every(std::chrono::seconds(1));
 
   const scallop::server::WorldRegistry worlds(config.worlds, config.default_world, config.rasters);
   std::optional<scallop::server::TokenTable> tokens;
@@ -348,5 +354,6 @@ int main(int argc, char** argv) {
   if (http_listener) http_listener->Stop();
   if (metrics_server) metrics_server->Stop();
   spdlog::info("stopped");
+  spdlog::shutdown();  // the held lines written, the flushing thread stopped
   return 0;
 }

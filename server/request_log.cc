@@ -3,6 +3,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <iterator>
+#include <string_view>
+
 #include "status_code_name.h"
 
 namespace scallop::server {
@@ -15,14 +18,28 @@ void RequestLog::Finish(const grpc::Status& status) const {
   // lines the level drops.
   if (!spdlog::should_log(status.ok() ? spdlog::level::info : spdlog::level::warn)) return;
   const double milliseconds = seconds * 1000;
-  const std::string rect =
-      rect_ ? fmt::format("[{},{})x[{},{})", rect_->x0, rect_->x1, rect_->y0, rect_->y1) : "-";
+  // Views, so a configured world's description is not copied a call.
+  const std::string described = world_description_ == nullptr && world_ ? world_->Describe() : "";
+  std::string_view world = "-";
+  if (world_description_ != nullptr) {
+    world = *world_description_;
+  } else if (world_) {
+    world = described;
+  }
+  fmt::memory_buffer rect;
+  if (rect_) {
+    fmt::format_to(std::back_inserter(rect), "[{},{})x[{},{})", rect_->x0, rect_->x1, rect_->y0,
+                   rect_->y1);
+  } else {
+    rect.push_back('-');
+  }
+  const std::string_view rect_text(rect.data(), rect.size());
   if (status.ok()) {
-    spdlog::info("{} world=\"{}\" rect={} points={} ms={:.1f} code=OK", method_, world_, rect,
+    spdlog::info("{} world=\"{}\" rect={} points={} ms={:.1f} code=OK", method_, world, rect_text,
                  points_, milliseconds);
   } else {
     spdlog::warn("{} world=\"{}\" rect={} points={} ms={:.1f} code={} message=\"{}\"", method_,
-                 world_, rect, points_, milliseconds, StatusCodeName(status.error_code()),
+                 world, rect_text, points_, milliseconds, StatusCodeName(status.error_code()),
                  status.error_message());
   }
 }

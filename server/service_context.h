@@ -73,7 +73,7 @@ class ServiceContext {
     ResolvedWorld resolved;
     if (grpc::Status status = worlds.Resolve(request, resolved); !status.ok()) return status;
     world = resolved.world;
-    log.set_world(world.Describe());
+    log.set_world(world, resolved.description);
     return grpc::Status::OK;
   }
 

@@ -23,6 +23,10 @@ namespace scallop::server {
 struct ResolvedWorld {
   World world;       // valid and canonical
   std::string name;  // the configured name, empty for an inline world
+  // A configured world's Describe(), made once by the registry (which owns
+  // it and outlives every call): a call's log line needs no formatting of
+  // its world. Null for an inline world.
+  const std::string* description = nullptr;
 };
 
 class WorldRegistry {
@@ -31,7 +35,9 @@ class WorldRegistry {
                 RasterCatalog rasters = {})
       : worlds_(std::move(worlds)),
         default_name_(std::move(default_name)),
-        rasters_(std::move(rasters)) {}
+        rasters_(std::move(rasters)) {
+    for (const auto& [name, world] : worlds_) descriptions_.emplace(name, world.Describe());
+  }
 
   // The request's world: INVALID_ARGUMENT naming the world.* field for a bad
   // inline world (an unknown raster name included), NOT_FOUND naming
@@ -72,6 +78,7 @@ class WorldRegistry {
   grpc::Status ResolveName(const std::string& name, ResolvedWorld& resolved) const;
 
   std::map<std::string, World> worlds_;
+  std::map<std::string, std::string> descriptions_;  // by name, as worlds_
   std::string default_name_;
   RasterCatalog rasters_;
   // Serialized message -> world, and the keys oldest first.

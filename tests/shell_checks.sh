@@ -49,3 +49,14 @@ start_scallopd() {
     sleep 0.1
   done
 }
+# wait_for_log FILE PATTERN [COUNT]: true once FILE holds at least COUNT (default 1) lines
+# matching the grep PATTERN, false after 10 s. scallopd writes its call lines in batches,
+# within a second of the call (warnings at once).
+wait_for_log() {
+  local file=$1 pattern=$2 count=${3:-1}
+  for _ in $(seq 100); do
+    [ "$(grep -c -- "$pattern" "$file")" -ge "$count" ] && return 0
+    sleep 0.1
+  done
+  return 1
+}

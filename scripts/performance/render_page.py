@@ -363,8 +363,13 @@ def service_load(run):
         "serialized once: the transport's limit) side by side on loopback, driven by\n"
         "`load_generator` with 64 d tiles of A3 worlds: warm (inside a 256 d square\n"
         "queried once before) and cold (a fresh world, tiles 1024 d apart). Targets\n"
-        "(issue 23): warm at least 0.85x the null server in every run; cold p99 for one\n"
-        "stream at most 5 ms.\n",
+        "(issue 23): warm at least 0.85x the null server in every round (each round's\n"
+        "null and scallopd runs are seconds apart, so the ratio is given round by round\n"
+        "and its worst); cold p99 for one stream at most 5 ms, beside the engine alone\n"
+        "on as many threads (`cold_tile_latency`, wall time) in the same run. With\n"
+        "`BEFORE=` an earlier build's scallopd (`before`) runs beside it, taking turns\n"
+        "going first. `cpu_us/req` is the server's CPU time a call, the figure a loaded\n"
+        "machine disturbs least.\n",
         keep=lambda line: bool(line.strip()) and not line.startswith("#"))
 
 

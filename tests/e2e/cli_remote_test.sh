@@ -36,7 +36,7 @@ if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "dns:/// target: $
 run "$scallop" stream --server "ipv4:$server,$server" --world coast --rect "$rect"
 if cmp -s "$work/out" "$work/plane.csv"; then pass; else fail "ipv4: target: $(head -2 "$work/err")"; fi
 # At the default log level every call leaves a line.
-if grep -q 'GetPoints world="seed=7 .* code=OK' "$work/server.log"; then pass; else
+if wait_for_log "$work/server.log" 'GetPoints world="seed=7 .* code=OK'; then pass; else
   fail "no request line at log level info: $(tail -3 "$work/server.log")"; fi
 
 run "$scallop" plane --seed 7 --rect "$rect" --format json
@@ -175,7 +175,7 @@ small=$address
 run "$scallop" nearest --server "$small" --seed 7 --input "$work/positions"
 expect_status 0 "nearest in batches of 7"
 if cmp -s "$work/out" "$work/nearest.csv"; then pass; else fail "nearest in batches of 7 differs from local"; fi
-if [ "$(grep -c Nearest "$work/server3.log")" -eq 15 ]; then pass; else fail "nearest: want 15 calls of 7: $(grep -c Nearest "$work/server3.log")"; fi
+if wait_for_log "$work/server3.log" Nearest 15 && [ "$(grep -c Nearest "$work/server3.log")" -eq 15 ]; then pass; else fail "nearest: want 15 calls of 7: $(grep -c Nearest "$work/server3.log")"; fi
 run "$scallop" noise --server "$small" --seed 7 --rect 0,0,100,100 --size 100x100 --png "$work/big.png"
 expect_status 1 "noise over max_noise_grid_samples"
 if grep -q "INVALID_ARGUMENT: width \* height.*max_noise_grid_samples" "$work/err"; then pass; else fail "noise limit message: $(cat "$work/err")"; fi
