@@ -53,9 +53,9 @@ class FieldPointGrid {
 
   // Moves every point filed so far into the packed array (cells in row-major order, each cell's
   // points in the order they were added); points added later go to the lists as before. Changes
-  // only the order in which AnyNear visits a cell's points. O(points + cells), a pass over the
-  // cells' starts: the lists' heads are cleared by their points (those added since the last
-  // Pack), and the scratch is kept, so that the run does not fault in fresh pages each time.
+  // only the order in which AnyNear visits a cell's points. O(points + cells): the lists' heads
+  // are cleared by their points (those added since the last Pack), and the points are scattered
+  // through the cells' starts themselves, with no cell-sized copy to fault in at every Pack.
   void Pack() {
     const size_t cells = head_.size();
     for (size_t k = packed_.size(); k < points_.size(); ++k) head_[CellOf(points_[k].p)] = -1;
