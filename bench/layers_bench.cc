@@ -3,7 +3,8 @@
 //  - a one-layer uniform A3 world of the smallest spacing (1.5), cold (the control);
 //  - the studios' way: three passes of our bounded A3 sampler on the square (spacings 8, 3, 1.5,
 //    each with its own seed), each pass's points dropped where they come within D of a point
-//    kept by an earlier pass, through a grid.
+//    kept by an earlier pass, through a grid; and the same passes taken from three uniform
+//    worlds of the plane (cold), as a studio using the service would.
 // Points per second of CPU time, and each layer's largest empty spot: the largest slack
 // min(|x - q| - d_k, |x - c| - D) over a central window 20 or more from the square's edges (so
 // that the bounded passes' edges and the plane's halo do not enter), probed d / 20 apart;
@@ -128,15 +129,29 @@ void BM_UniformCold(benchmark::State& state) {
   Report(state, produced);
 }
 
-// The studios' passes: bounded A3 per layer, pruned against the kept points of earlier passes.
-PlanePoints StudioPasses(const WorldLayers& layers, const Rect& square, uint64_t seed) {
+// Where a studios' pass takes its points: bounded A3 on the square, or the square of a uniform
+// world (a cold query of the plane engine), as a studio using the service would.
+enum class PassSource { kBoundedA3, kPlane };
+
+// The studios' passes: each layer's points at its spacing (its own seed), pruned against the
+// kept points of earlier passes.
+PlanePoints StudioPasses(const WorldLayers& layers, const Rect& square, uint64_t seed,
+                         PassSource source) {
   PlanePoints kept;
   for (const int k : layers.generation_order()) {
     const double d = layers.world(k).min_distance();
-    StatusOr<std::vector<Vec2>> pass = Sample({.algorithm = Algorithm::kA3,
-                                               .domain = {square, false},
-                                               .min_distance = d,
-                                               .seed = seed + static_cast<uint64_t>(k)});
+    const uint64_t pass_seed = seed + static_cast<uint64_t>(k);
+    std::vector<Vec2> pass;
+    if (source == PassSource::kBoundedA3) {
+      pass = *Sample({.algorithm = Algorithm::kA3,
+                      .domain = {square, false},
+                      .min_distance = d,
+                      .seed = pass_seed});
+    } else {
+      PlaneEngine engine(PlaneEngineOptions{.threads = 1});
+      pass =
+          engine.Points(*World::Create({.seed = pass_seed, .min_distance = d}), square)->positions;
+    }
     // The earlier passes' points, filed in cells of the largest D to this layer.
     double reach = 0.0;
     for (size_t m = 0; m < kept.positions.size(); ++m) {
@@ -146,7 +161,7 @@ PlanePoints StudioPasses(const WorldLayers& layers, const Rect& square, uint64_t
     for (size_t m = 0; m < kept.positions.size(); ++m) {
       earlier.Add(kept.positions[m], layers.exclusion(kept.layers[m], k));
     }
-    for (const Vec2& p : *pass) {
+    for (const Vec2& p : pass) {
       const bool pruned =
           earlier.AnyNear(Grown(Rect{p.x, p.y, p.x, p.y}, reach),
                           [&](const FieldPoint& c) { return SquaredDistance(p, c.p) < c.r * c.r; });
@@ -158,12 +173,12 @@ PlanePoints StudioPasses(const WorldLayers& layers, const Rect& square, uint64_t
   return kept;
 }
 
-void BM_StudioPasses(benchmark::State& state) {
+void BM_StudioPasses(benchmark::State& state, PassSource source) {
   const World world = Forest();
   const Rect square = SquareFor(state.range(0));
   PlanePoints last;
   for (auto _ : state) {
-    PlanePoints kept = StudioPasses(*world.layers(), square, 2026);
+    PlanePoints kept = StudioPasses(*world.layers(), square, 2026, source);
     benchmark::DoNotOptimize(kept.positions.data());
     last = std::move(kept);
   }
@@ -173,10 +188,24 @@ void BM_StudioPasses(benchmark::State& state) {
 
 BENCHMARK(BM_LayeredCold)->Name("layers_cold_smoke")->Arg(5000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_UniformCold)->Name("uniform_cold_smoke")->Arg(5000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_StudioPasses)->Name("studio_passes_smoke")->Arg(5000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StudioPasses, bounded, PassSource::kBoundedA3)
+    ->Name("studio_passes_smoke")
+    ->Arg(5000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StudioPasses, plane, PassSource::kPlane)
+    ->Name("studio_plane_passes_smoke")
+    ->Arg(5000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LayeredCold)->Name("layers_cold_250k")->Arg(250000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_UniformCold)->Name("uniform_cold_250k")->Arg(250000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_StudioPasses)->Name("studio_passes_250k")->Arg(250000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StudioPasses, bounded, PassSource::kBoundedA3)
+    ->Name("studio_passes_250k")
+    ->Arg(250000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StudioPasses, plane, PassSource::kPlane)
+    ->Name("studio_plane_passes_250k")
+    ->Arg(250000)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace scallop

@@ -306,6 +306,49 @@ TEST(DiskArcTest, DiskBinsHoldForTheArcsComputed) {
   EXPECT_EQ(DiskBins::ForRatio(DiskBins::kMaxRatio * 1.01), nullptr);
 }
 
+// Fewer than `bound` disks (radii 0.88, 0.6 and 2.5, the last without a table) near the circle
+// of radius about 1 about `centre`, some holding it whole.
+std::vector<ExclusionDisk> RandomDisks(Rng& rng, Vec2 centre, uint64_t bound) {
+  std::vector<ExclusionDisk> disks;
+  const double radii[] = {0.88, 0.6, 2.5};
+  const int count = static_cast<int>(rng.Below(bound));
+  for (int n = 0; n < count; ++n) {
+    const double r = radii[rng.Below(3)];
+    const double angle = rng.Uniform(0, 7), length = rng.Uniform(0.2, 1.2) * (1 + r);
+    disks.push_back(
+        {{centre.x + length * std::cos(angle), centre.y + length * std::sin(angle)}, r});
+  }
+  return disks;
+}
+
+// A circle's centre for trial `trial`, a quarter of them far from the origin, with the largest
+// coordinate of a run about it and the spacing of d = 1 there.
+struct Place {
+  Vec2 centre;
+  double max_abs;
+  double spacing;
+};
+Place RandomPlace(Rng& rng, int trial) {
+  const double far = trial % 4 == 0 ? 3e6 : 0.0;
+  const Vec2 centre = {far + rng.Uniform(-50, 50), rng.Uniform(-50, 50)};
+  const double max_abs = std::abs(centre.x) + 60;
+  return {centre, max_abs, SpacingFor(1.0, max_abs)};
+}
+
+// Cuts from `boundary` (of the circle of radius `spacing` about `centre`) the arc of every disk
+// but `skip`, computed by the second intersection rule, one by one.
+void CutEveryDisk(const BoundaryExclusions& exclusions, Vec2 centre, double spacing,
+                  AvailableBoundary& boundary, size_t skip = SIZE_MAX) {
+  for (size_t k = 0; k < exclusions.size(); ++k) {
+    KeyArc arc{0, 0};
+    const DiskCover cover = k == skip ? DiskCover::kNone
+                                      : CoveredArcOfCircle(exclusions.centre(k) - centre, spacing,
+                                                           exclusions.cut_radius(k), arc);
+    if (cover == DiskCover::kWhole) boundary.Clear();
+    if (cover == DiskCover::kArc) boundary.SubtractArc(arc.from_key, arc.to_key);
+  }
+}
+
 // BoundaryExclusions cuts from a point's circle exactly what cutting every disk's arc would, by
 // tables or not (radii with and without one), far from the origin too; leaving a disk out is
 // caught.
@@ -313,20 +356,9 @@ TEST(DiskArcTest, CutAroundPointLeavesTheRangesOfCuttingEveryArc) {
   Rng rng(23);
   int empty = 0, with_ranges = 0, caught = 0, tried = 0;
   for (int trial = 0; trial < 4000; ++trial) {
-    const double d = 1.0, far = trial % 4 == 0 ? 3e6 : 0.0;
-    const Vec2 centre = {far + rng.Uniform(-50, 50), rng.Uniform(-50, 50)};
-    const double max_abs = std::abs(centre.x) + 60;
-    const double spacing = SpacingFor(d, max_abs);
-    std::vector<ExclusionDisk> disks;
-    const double radii[] = {0.88, 0.6, 2.5};  // the last has no table
-    const int count = static_cast<int>(rng.Below(9));
-    for (int n = 0; n < count; ++n) {
-      const double r = radii[rng.Below(3)];
-      const double angle = rng.Uniform(0, 7), length = rng.Uniform(0.2, 1.2) * (1 + r);
-      disks.push_back(
-          {{centre.x + length * std::cos(angle), centre.y + length * std::sin(angle)}, r});
-    }
-    BoundaryExclusions exclusions(disks, d, spacing, max_abs);
+    const double d = 1.0;
+    const auto [centre, max_abs, spacing] = RandomPlace(rng, trial);
+    BoundaryExclusions exclusions(RandomDisks(rng, centre, 9), d, spacing, max_abs);
     AvailableBoundary start;
     start.Reset();
     if (rng.Uniform() < 0.5) start.SubtractArc(AwkwardKey(rng), AwkwardKey(rng));
@@ -334,15 +366,7 @@ TEST(DiskArcTest, CutAroundPointLeavesTheRangesOfCuttingEveryArc) {
     exclusions.CutAroundPoint(centre, built);
     const auto cut_every = [&](size_t skip) {
       AvailableBoundary expected = start;
-      for (size_t k = 0; k < exclusions.size(); ++k) {
-        KeyArc arc{0, 0};
-        const DiskCover cover = k == skip
-                                    ? DiskCover::kNone
-                                    : CoveredArcOfCircle(exclusions.centre(k) - centre, spacing,
-                                                         exclusions.cut_radius(k), arc);
-        if (cover == DiskCover::kWhole) expected.Clear();
-        if (cover == DiskCover::kArc) expected.SubtractArc(arc.from_key, arc.to_key);
-      }
+      CutEveryDisk(exclusions, centre, spacing, expected, skip);
       return expected;
     };
     ASSERT_TRUE(SameRanges(built, cut_every(SIZE_MAX))) << "trial " << trial;
@@ -356,6 +380,115 @@ TEST(DiskArcTest, CutAroundPointLeavesTheRangesOfCuttingEveryArc) {
   EXPECT_GT(empty, 200);
   EXPECT_GT(with_ranges, 1000);
   EXPECT_GT(caught, tried / 4);
+}
+
+// A point's circle in a layered run: the disks' whole bins dropped with the points' in Build
+// (covered_later), then the disks' arcs cut, leaves what cutting every arc (points', disks',
+// the domain's) leaves. Dropping one bin too many (a disk's bins turned by one) is caught.
+TEST(DiskArcTest, DisksBinsDroppedInBuildLeaveTheRangesOfCuttingEveryArc) {
+  Rng rng(24);
+  int empty = 0, with_ranges = 0, caught = 0, tried = 0;
+  for (int trial = 0; trial < 6000; ++trial) {
+    // Scenes lie within 1e3 + 3e6 spacings of the origin.
+    const double d = 1.0, max_abs = 4e6;
+    const double spacing = SpacingFor(d, max_abs);
+    const Scene scene = RandomScene(rng, spacing);
+    BoundaryExclusions exclusions(RandomDisks(rng, scene.centre, 6), d, spacing, max_abs);
+    CandidateBoundary builder(spacing);
+    AvailableBoundary built;
+    if (exclusions.GatherAroundPoint(scene.centre)) {
+      builder.Build(scene.centre, scene.other_arcs, scene.neighbours, built,
+                    exclusions.GatheredCoveredBins());
+      if (!built.empty()) exclusions.CutGathered(built);
+    } else {
+      built.Clear();
+    }
+    AvailableBoundary expected = CutEveryArc(scene, spacing);
+    CutEveryDisk(exclusions, scene.centre, spacing, expected);
+    ASSERT_TRUE(SameRanges(built, expected)) << "trial " << trial;
+    empty += built.empty();
+    with_ranges += !built.empty();
+    // The planted fault: a disk's whole bins one bin off.
+    const uint64_t covered = exclusions.GatheredCoveredBins();
+    if (covered != 0 && covered != ~uint64_t{0} && exclusions.GatherAroundPoint(scene.centre)) {
+      ++tried;
+      AvailableBoundary planted;
+      builder.Build(scene.centre, scene.other_arcs, scene.neighbours, planted,
+                    std::rotl(covered, 1));
+      if (!planted.empty()) exclusions.CutGathered(planted);
+      caught += !SameRanges(planted, expected);
+    }
+  }
+  EXPECT_GT(empty, 500);
+  EXPECT_GT(with_ranges, 1500);
+  EXPECT_GT(tried, 500);
+  EXPECT_GT(caught, tried / 10);
+}
+
+// The circle of an exclusion disk (a pocket's edge) less the other disks' arcs and the points'
+// disks' (radius `spacing`) leaves what cutting every arc leaves, whether the points' bins settle
+// it before the disks are searched or not; leaving a point or a disk out is caught.
+TEST(DiskArcTest, CutAroundDiskLeavesTheRangesOfCuttingEveryArc) {
+  Rng rng(25);
+  int empty = 0, with_ranges = 0, caught = 0, tried = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const double d = 1.0;
+    const auto [centre, max_abs, spacing] = RandomPlace(rng, trial);
+    std::vector<ExclusionDisk> disks = RandomDisks(rng, centre, 6);
+    disks.push_back({centre, rng.Uniform() < 0.5 ? 0.88 : 2.5});
+    BoundaryExclusions exclusions(disks, d, spacing, max_abs);
+    size_t k = 0;  // the disk at `centre`, wherever filing put it
+    while (exclusions.centre(k) != centre) ++k;
+    const double radius = exclusions.cut_radius(k);
+    std::vector<Vec2> points;
+    const int count = static_cast<int>(rng.Below(10));
+    for (int n = 0; n < count; ++n) {
+      const double angle = rng.Uniform(0, 7), length = rng.Uniform(radius, radius + 1.1 * spacing);
+      points.push_back({centre.x + length * std::cos(angle), centre.y + length * std::sin(angle)});
+    }
+    AvailableBoundary start;
+    start.Reset();
+    if (rng.Uniform() < 0.5) start.SubtractArc(AwkwardKey(rng), AwkwardKey(rng));
+    AvailableBoundary built = start;
+    exclusions.CutAroundDisk(k, points, built);
+    const auto cut_every = [&](size_t skip_disk, size_t skip_point) {
+      AvailableBoundary expected = start;
+      for (size_t j = 0; j < exclusions.size(); ++j) {
+        KeyArc arc{0, 0};
+        const DiskCover cover = j == k || j == skip_disk
+                                    ? DiskCover::kNone
+                                    : CoveredArcOfCircle(exclusions.centre(j) - centre, radius,
+                                                         exclusions.cut_radius(j), arc);
+        if (cover == DiskCover::kWhole) expected.Clear();
+        if (cover == DiskCover::kArc) expected.SubtractArc(arc.from_key, arc.to_key);
+      }
+      for (size_t n = 0; n < points.size(); ++n) {
+        KeyArc arc{0, 0};
+        const DiskCover cover = n == skip_point
+                                    ? DiskCover::kNone
+                                    : CoveredArcOfCircle(points[n] - centre, radius, spacing, arc);
+        if (cover == DiskCover::kWhole) expected.Clear();
+        if (cover == DiskCover::kArc) expected.SubtractArc(arc.from_key, arc.to_key);
+      }
+      return expected;
+    };
+    ASSERT_TRUE(SameRanges(built, cut_every(SIZE_MAX, SIZE_MAX))) << "trial " << trial;
+    empty += built.empty();
+    with_ranges += !built.empty();
+    if (!points.empty()) {
+      ++tried;
+      caught += !SameRanges(built, cut_every(SIZE_MAX, rng.Below(points.size())));
+    }
+    if (exclusions.size() > 1) {
+      ++tried;
+      size_t skip = rng.Below(exclusions.size() - 1);
+      skip += skip >= k;
+      caught += !SameRanges(built, cut_every(skip, SIZE_MAX));
+    }
+  }
+  EXPECT_GT(empty, 400);
+  EXPECT_GT(with_ranges, 1500);
+  EXPECT_GT(caught, tried / 5);
 }
 
 }  // namespace

@@ -49,7 +49,7 @@ BoundaryExclusions::BoundaryExclusions(std::span<const ExclusionDisk> disks, dou
                         nullptr});
       largest_cut_ = std::max(largest_cut_, cut);
     }
-    given.push_back({disk.centre, radius});
+    given.push_back({disk.centre, radii_[radius].cut, radius});
   }
   if (given.empty()) return;
   for (Radius& circle : radii_) {
@@ -84,49 +84,58 @@ BoundaryExclusions::BoundaryExclusions(std::span<const ExclusionDisk> disks, dou
   std::vector<uint32_t> filled(cell_start_.begin(), cell_start_.end() - 1);
   for (const Disk& disk : given) disks_[filled[cell_of(disk.centre)]++] = disk;
   arcs_.reserve(disks_.size());
-  near_.reserve(disks_.size());
+  near_.resize(disks_.size());
 }
 
-bool BoundaryExclusions::AddExactArc(Vec2 offset, double circle, double disk_radius) {
-  DiskArc arc{{0, 0}, {0, 0}, offset, circle, disk_radius, true};
-  const DiskCover cover = CoveredArcOfCircle(offset, circle, disk_radius, arc.arc);
+bool BoundaryExclusions::AddExactArc(Vec2 offset, double disk_radius) {
+  KeyArc arc{0, 0};
+  const DiskCover cover = CoveredArcOfCircle(offset, circle_, disk_radius, arc);
   if (cover == DiskCover::kWhole) return false;
   if (cover == DiskCover::kNone) return true;
-  arc.bins = BinsOf(arc.arc);
-  arcs_.push_back(arc);
+  arcs_.push_back({BinsOf(arc), offset, disk_radius, static_cast<int32_t>(exact_arcs_.size())});
+  exact_arcs_.push_back(arc);
   return true;
 }
 
-bool BoundaryExclusions::Around(Vec2 centre, double circle, const DiskBins* const* tables,
-                                size_t skip) {
+void BoundaryExclusions::StartSearch(double circle) {
   arcs_.clear();
-  near_.clear();
+  exact_arcs_.clear();
+  near_count_ = 0;
+  circle_ = circle;
+}
+
+bool BoundaryExclusions::AddDisksNear(Vec2 centre, const DiskBins* const* tables, size_t skip) {
   if (disks_.empty()) return true;
+  const double circle = circle_;
   // Cells clamped to the grid: every centre lies in it, so the clamped range still holds each
-  // centre within reach. Floor, not truncation: offsets may be negative here.
+  // centre within reach. Clamped first, truncation is floor (std::floor is a libm call here).
   const double reach = circle + largest_cut_, scale = 16.0 / circle;
   const auto index = [&](double offset, int64_t count) {
-    const double cell = std::floor(offset * inverse_cell_);
-    return static_cast<int64_t>(std::clamp(cell, 0.0, static_cast<double>(count - 1)));
+    return static_cast<int64_t>(
+        std::clamp(offset * inverse_cell_, 0.0, static_cast<double>(count - 1)));
   };
   const int64_t c0 = index(centre.x - reach - origin_.x, columns_);
   const int64_t c1 = index(centre.x + reach - origin_.x, columns_);
   const int64_t r0 = index(centre.y - reach - origin_.y, rows_);
   const int64_t r1 = index(centre.y + reach - origin_.y, rows_);
-  bool whole = false;
+  // The disks near, filed without a branch each (whether one is near cannot be predicted)...
   for (int64_t row = r0; row <= r1; ++row) {
     const uint32_t first = cell_start_[static_cast<size_t>(row * columns_ + c0)];
     const uint32_t last = cell_start_[static_cast<size_t>(row * columns_ + c1) + 1];
     for (uint32_t k = first; k < last; ++k) {
       const Disk& disk = disks_[k];
-      const Radius& radius = radii_[disk.radius];
-      const Vec2 offset = disk.centre - centre;
-      const double meets = circle + radius.cut;
-      if (SquaredLength(offset) >= meets * meets) continue;
-      near_.push_back(k);
-      if (k == skip) continue;
-      whole = whole || !AddArc(offset, circle, scale, radius.cut, tables[disk.radius]);
+      const double meets = circle + disk.cut;
+      near_[near_count_] = k;
+      near_count_ += SquaredLength(disk.centre - centre) < meets * meets;
     }
+  }
+  // ... then their arcs.
+  bool whole = false;
+  for (size_t n = 0; n < near_count_; ++n) {
+    const uint32_t k = near_[n];
+    if (k == skip) continue;
+    const Disk& disk = disks_[k];
+    whole = whole || !AddArc(disk.centre - centre, scale, disk.cut, tables[disk.radius]);
   }
   return !whole;
 }
@@ -150,34 +159,31 @@ void BoundaryExclusions::Cut(AvailableBoundary& boundary) const {
   const uint64_t left = met & ~covered;
   for (const DiskArc& disk : arcs_) {
     if ((disk.bins.reached & left) == 0 || boundary.empty()) continue;
-    KeyArc arc = disk.arc;
+    KeyArc arc{0, 0};
     const DiskCover cover =
-        disk.has_arc ? DiskCover::kArc
-                     : CoveredArcOfCircle(disk.offset, disk.circle_radius, disk.disk_radius, arc);
+        disk.exact >= 0 ? (arc = exact_arcs_[static_cast<size_t>(disk.exact)], DiskCover::kArc)
+                        : CoveredArcOfCircle(disk.offset, circle_, disk.disk_radius, arc);
     if (cover == DiskCover::kWhole) boundary.Clear();
     if (cover == DiskCover::kArc) boundary.SubtractArc(arc.from_key, arc.to_key);
   }
-}
-
-void BoundaryExclusions::CutAroundPoint(Vec2 centre, AvailableBoundary& boundary) {
-  if (!Around(centre, spacing_, from_point_.data(), SIZE_MAX)) {
-    boundary.Clear();
-    return;
-  }
-  Cut(boundary);
 }
 
 void BoundaryExclusions::CutAroundDisk(size_t k, std::span<const Vec2> points,
                                        AvailableBoundary& boundary) {
   const Vec2 centre = disks_[k].centre;
   const Radius& circle = radii_[disks_[k].radius];
-  bool whole = !Around(centre, circle.cut, circle.from_disk.data(), k);
+  StartSearch(circle.cut);
+  // The points' arcs first: they cover nearly every disk's circle (by their bins alone), and
+  // then the other disks are not searched.
+  bool whole = false;
   const double meets = circle.cut + spacing_, scale = 16.0 / circle.cut;
   for (size_t n = 0; n < points.size() && !whole; ++n) {
     const Vec2 offset = points[n] - centre;
     if (SquaredLength(offset) >= meets * meets) continue;
-    whole = !AddArc(offset, circle.cut, scale, spacing_, circle.point_from_here);
+    whole = !AddArc(offset, scale, spacing_, circle.point_from_here);
   }
+  whole = whole || (boundary.BinsMet() & ~GatheredCoveredBins()) == 0 ||
+          !AddDisksNear(centre, circle.from_disk.data(), k);
   if (whole) {
     boundary.Clear();
     return;
@@ -187,8 +193,9 @@ void BoundaryExclusions::CutAroundDisk(size_t k, std::span<const Vec2> points,
 
 bool BoundaryExclusions::Excludes(Vec2 x) const {
   bool inside = false;
-  for (const uint32_t k : near_) {
-    inside = inside || SquaredDistance(x, disks_[k].centre) < radii_[disks_[k].radius].squared;
+  for (size_t n = 0; n < near_count_; ++n) {
+    const Disk& disk = disks_[near_[n]];
+    inside = inside || SquaredDistance(x, disk.centre) < radii_[disk.radius].squared;
   }
   return inside;
 }

@@ -20,11 +20,10 @@ namespace scallop {
 // itself, and what computing that arc takes when a bin left over needs it.
 struct DiskArc {
   ArcBins bins;
-  KeyArc arc;   // CoveredArcOfCircle(offset, circle_radius, disk_radius), when has_arc
   Vec2 offset;  // the disk's centre less the circle's
-  double circle_radius;
   double disk_radius;
-  bool has_arc;
+  // Where the arc (CoveredArcOfCircle) was computed already, into the exact arcs; -1: not yet.
+  int32_t exact;
 };
 
 // Not thread-safe: each query keeps what it found for the next calls.
@@ -42,7 +41,7 @@ class BoundaryExclusions {
   size_t size() const { return disks_.size(); }
   Vec2 centre(size_t k) const { return disks_[k].centre; }
   // The radius disk k is cut with, a hair above its D.
-  double cut_radius(size_t k) const { return radii_[disks_[k].radius].cut; }
+  double cut_radius(size_t k) const { return disks_[k].cut; }
 
   // Removes from `boundary`, the available part of the circle of radius `spacing` about
   // `centre` (a point's), the arcs the disks cover, and remembers the disks near it for
@@ -50,7 +49,29 @@ class BoundaryExclusions {
   // an arc is computed only if it may meet a bin the ranges meet, and the bins a disk covers
   // whole (DiskBins' table for its ratio, where it has one) are cut as they are.
   // O(disks near the circle + ranges x exact cuts).
-  void CutAroundPoint(Vec2 centre, AvailableBoundary& boundary);
+  void CutAroundPoint(Vec2 centre, AvailableBoundary& boundary) {
+    if (GatherAroundPoint(centre)) {
+      Cut(boundary);
+    } else {
+      boundary.Clear();
+    }
+  }
+
+  // CutAroundPoint in two steps, so that the disks' whole bins can be dropped before the
+  // points' arcs are cut (CandidateBoundary::Build's covered_later): first the disks near the
+  // circle, remembered for the calls below and Excludes (false: one holds the whole circle)...
+  bool GatherAroundPoint(Vec2 centre) {
+    StartSearch(spacing_);
+    return AddDisksNear(centre, from_point_.data(), SIZE_MAX);
+  }
+  // ... the bins their arcs cover whole...
+  uint64_t GatheredCoveredBins() const {
+    uint64_t covered = 0;
+    for (const DiskArc& arc : arcs_) covered |= arc.bins.covered;
+    return covered;
+  }
+  // ... and their arcs removed from `boundary`, as CutAroundPoint removes them.
+  void CutGathered(AvailableBoundary& boundary) const { Cut(boundary); }
 
   // The same for the circle of disk k (its cut radius), with the other disks and the disks of
   // radius `spacing` about those of `points` within reach of it.
@@ -78,25 +99,27 @@ class BoundaryExclusions {
   };
   struct Disk {
     Vec2 centre;
+    double cut;       // radii_[radius].cut, here for the search
     uint32_t radius;  // into radii_
   };
 
   // Removes the arcs of arcs_ from `boundary`, as CutAroundPoint says.
   void Cut(AvailableBoundary& boundary) const;
-  // Fills arcs_ and near_ with the disks (but `skip`) whose cut circle may meet the circle of
-  // radius `circle` about `centre`; `tables[j]` sees radius j's disks from it. False: one holds
-  // it whole.
-  bool Around(Vec2 centre, double circle, const DiskBins* const* tables, size_t skip);
+  // Empties arcs_ and near_ for a search about a circle of radius `circle`.
+  void StartSearch(double circle);
+  // Adds to arcs_ and near_ the disks (but `skip`) whose cut circle may meet the circle of the
+  // search about `centre`; `tables[j]` sees radius j's disks from it. False: one holds it whole.
+  bool AddDisksNear(Vec2 centre, const DiskBins* const* tables, size_t skip);
   // Appends to arcs_ the arc of the circle (radius `circle`, table scale `scale` = 16 / circle)
   // that the disk of radius `disk_radius` at `offset` covers, by `table` or exactly. False: it
   // holds the whole circle.
-  bool AddArc(Vec2 offset, double circle, double scale, double disk_radius, const DiskBins* table) {
-    if (table == nullptr) return AddExactArc(offset, circle, disk_radius);
-    arcs_.push_back({table->Of(offset, scale), {0, 0}, offset, circle, disk_radius, false});
+  bool AddArc(Vec2 offset, double scale, double disk_radius, const DiskBins* table) {
+    if (table == nullptr) return AddExactArc(offset, disk_radius);
+    arcs_.push_back({table->Of(offset, scale), offset, disk_radius, -1});
     return true;
   }
   // AddArc without a table: the arc computed, and its bins from its keys.
-  [[gnu::noinline]] bool AddExactArc(Vec2 offset, double circle, double disk_radius);
+  [[gnu::noinline]] bool AddExactArc(Vec2 offset, double disk_radius);
 
   std::vector<Radius> radii_;
   std::vector<Disk> disks_;  // by cell, then as given
@@ -109,8 +132,13 @@ class BoundaryExclusions {
   int64_t columns_ = 0, rows_ = 0;
   std::vector<uint32_t> cell_start_;
   std::vector<const DiskBins*> from_point_;  // radii_[j].from_point, in one array
+  // What the last search found: the radius of its circle, the arcs, and the disks near it,
+  // near_[0, near_count_) (room for every disk, so that they are filed without a branch each).
+  double circle_ = 0.0;
   std::vector<DiskArc> arcs_;
-  std::vector<uint32_t> near_;  // disks remembered for Excludes
+  std::vector<KeyArc> exact_arcs_;
+  std::vector<uint32_t> near_;
+  size_t near_count_ = 0;
 };
 
 }  // namespace scallop

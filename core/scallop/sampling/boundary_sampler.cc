@@ -234,10 +234,14 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
     outside_arcs.clear();
     const bool inside = domain.torus || ClipToRectangle(domain.rect, p, spacing, outside_arcs);
     nearby_count = grid.GatherNear(p, 2 * spacing, 4 * spacing_squared, index, nearby);
-    if (inside) {
+    if (inside && exclusions.empty()) {
       candidate_boundary.Build(p, outside_arcs, std::span(nearby.data(), nearby_count), boundary);
-      // The exclusion disks after the points: most circles have nothing left by then.
-      if (!exclusions.empty() && !boundary.empty()) exclusions.CutAroundPoint(p, boundary);
+    } else if (inside && exclusions.GatherAroundPoint(p)) {
+      // The disks' whole bins go with the points' (no point's arc is computed for a bin a disk
+      // covers), their exact arcs after the points' (most circles have nothing left by then).
+      candidate_boundary.Build(p, outside_arcs, std::span(nearby.data(), nearby_count), boundary,
+                               exclusions.GatheredCoveredBins());
+      if (!boundary.empty()) exclusions.CutGathered(boundary);
     } else {
       boundary.Clear();
     }

@@ -28,8 +28,13 @@ class CandidateBoundary {
   // Reset() and then SubtractArc of every one of those arcs, in any order,
   // would leave. REQUIRES: SquaredLength(q - centre) < 4 s^2 for every
   // neighbour q, as computed in doubles. O(neighbours + ranges x exact cuts).
+  //
+  // `covered_later`: bins (ArcBins::covered) of arcs the caller cuts next
+  // anyway (a layered world's exclusion disks): dropped with the others, so
+  // that no neighbour's arc is computed for them alone. The ranges left
+  // after those cuts are the same either way.
   void Build(Vec2 centre, std::span<const KeyArc> other_arcs, std::span<const Vec2> neighbours,
-             AvailableBoundary& boundary);
+             AvailableBoundary& boundary, uint64_t covered_later = 0);
 
  private:
   double spacing_squared_;
@@ -44,11 +49,11 @@ class CandidateBoundary {
 // In the header, for the compiler to inline where it pays: it runs for
 // every candidate.
 inline void CandidateBoundary::Build(Vec2 centre, std::span<const KeyArc> other_arcs,
-                                     std::span<const Vec2> neighbours,
-                                     AvailableBoundary& boundary) {
+                                     std::span<const Vec2> neighbours, AvailableBoundary& boundary,
+                                     uint64_t covered_later) {
   const size_t count = neighbours.size();
   if (reached_.size() < count) reached_.resize(count + 8);
-  uint64_t covered = 0;
+  uint64_t covered = covered_later;
   for (const KeyArc& arc : other_arcs) covered |= BinsOf(arc).covered;
   for (size_t n = 0; n < count; ++n) {
     const ArcBins bins = bins_.Of(neighbours[n] - centre);
