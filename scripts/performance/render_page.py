@@ -127,7 +127,25 @@ def radius_fields(run):
         f"| uniform A3 (baseline) | {si(u)} | 1 | {ratio(u, b)} |\n",
         f"| **SampleField**, noise field | {si(f)} | **{ratio(f, u)}** | **{ratio(f, b)}** |\n",
         f"| field Bridson, k = 30 (not maximal) | {si(b)} | {ratio(b, u)} | 1 |\n",
-        field_work(field)])
+        field_work(field), field_before(run, size)])
+
+
+def field_before(run, size):
+    """When the results hold field_bench_before.json (the same benchmark built from the code
+    before a round of speed work, run right after): its ratios, so that a round's gain reads
+    against the load of the same hour. Absent from a regular run."""
+    rows = medians(load_json("field_bench_before.json"))
+    bounded = [rows.get(f"{name}_{size}") for name in ("uniform_a3", "field_noise8", "field_bridson")]
+    plane = [rows.get(f"plane_cold_{name}_250k/250000") for name in ("uniform_a3", "field_noise8")]
+    if not all(bounded) or not all(plane):
+        return ""
+    u, f, b = (r["points_per_second"] for r in bounded)
+    pu, pf = (r["points_per_second"] for r in plane)
+    return (f"\nThe code before the last round of speed work (commit {run.get('before_commit', '?')}),"
+            " the same benchmark run right after\n"
+            f"this one: SampleField {si(f)} points/s, {ratio(f, u)} uniform A3 and {ratio(f, b)}"
+            " the field Bridson;\n"
+            f"on the plane, cold, {ratio(pf, pu)} the uniform world.\n")
 
 
 def field_work(row):

@@ -53,16 +53,22 @@ class FieldPointGrid {
 
   // Moves every point filed so far into the packed array (cells in row-major order, each cell's
   // points in the order they were added); points added later go to the lists as before. Changes
-  // only the order in which AnyNear visits a cell's points. O(points + cells).
+  // only the order in which AnyNear visits a cell's points. O(points + cells): the lists' heads
+  // are cleared by their points (those added since the last Pack), and the points are scattered
+  // through the cells' starts themselves, with no cell-sized copy to fault in at every Pack.
   void Pack() {
     const size_t cells = head_.size();
+    for (size_t k = packed_.size(); k < points_.size(); ++k) head_[CellOf(points_[k].p)] = -1;
     cell_start_.assign(cells + 1, 0);
     for (const FieldPoint& q : points_) ++cell_start_[CellOf(q.p) + 1];
     for (size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
     packed_.resize(points_.size());
-    std::vector<int32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-    for (const FieldPoint& q : points_) packed_[static_cast<size_t>(fill[CellOf(q.p)]++)] = q;
-    std::fill(head_.begin(), head_.end(), -1);
+    // Each point goes to its cell's next free place; cell_start_[c] runs up to the next cell's
+    // start meanwhile, and is moved back one cell after.
+    for (const FieldPoint& q : points_)
+      packed_[static_cast<size_t>(cell_start_[CellOf(q.p)]++)] = q;
+    for (size_t c = cells; c > 0; --c) cell_start_[c] = cell_start_[c - 1];
+    cell_start_[0] = 0;
   }
 
   // How many points Pack() last moved (0 before the first).
@@ -103,13 +109,13 @@ class FieldPointGrid {
   }
 
  private:
-  int64_t Column(double x) const {
-    const double c = std::floor((x - area_.x0) * inverse_cell_);
-    return static_cast<int64_t>(std::clamp(c, 0.0, static_cast<double>(columns_ - 1)));
-  }
-  int64_t Row(double y) const {
-    const double r = std::floor((y - area_.y0) * inverse_cell_);
-    return static_cast<int64_t>(std::clamp(r, 0.0, static_cast<double>(rows_ - 1)));
+  // floor((x - x0) / cell) clamped to the columns, without the floor: clamped to [0, columns)
+  // first, the value is not negative, and the conversion's truncation is then floor (a value
+  // below 0 clamps to 0 either way). std::floor costs a call or a long sequence without SSE4.1.
+  int64_t Column(double x) const { return Clamped((x - area_.x0) * inverse_cell_, columns_); }
+  int64_t Row(double y) const { return Clamped((y - area_.y0) * inverse_cell_, rows_); }
+  static int64_t Clamped(double v, int64_t count) {
+    return static_cast<int64_t>(std::clamp(v, 0.0, static_cast<double>(count - 1)));
   }
 
   // Bits first .. first + width - 1 (width in [1, 64]) of the row's occupancy, bit 0 first's.

@@ -14,6 +14,7 @@
 #include "scallop/random/rng.h"
 #include "scallop/sampling/available_boundary.h"
 #include "scallop/sampling/curve_arcs.h"
+#include "scallop/sampling/field_candidate_boundary.h"
 #include "scallop/sampling/field_point_grid.h"
 #include "scallop/sampling/sampling_problem.h"
 
@@ -313,15 +314,21 @@ class FieldRun {
   // |p - q| < R(p) + max(R(p), R(q)) meets the circle: within 2 R(p) unless R(q) > R(p). Points
   // are looked for within kArcWindow R(p), which holds those with R(q) up to 1.5 R(p); a farther
   // one whose R is larger still (R(q) <= R(p) + L |p - q| allows up to 2 R(p) / (1 - L)) is
-  // found by the try it refuses, which cuts its arc then. Stops once nothing is left.
+  // found by the try it refuses, which cuts its arc then.
+  // By bins (FieldCandidateBoundary): the very ranges that cutting every arc leaves.
   void CutNeighbourArcs(const FieldPoint& p) {
     const Rect at{p.p.x, p.p.y, p.p.x, p.p.y};
+    neighbour_arcs_.Start(p.r);
     grid_.AnyNear(Grown(at, kArcWindow * p.r), [&](const FieldPoint& q) {
       const double m = std::max(q.r, p.r);
       const double reach = p.r + m;
-      if (SquaredDistance(p.p, q.p) < reach * reach) CutDiskArc(p, q.p, m);
-      return boundary_.empty();
+      const Vec2 o{q.p.x - p.p.x, q.p.y - p.p.y};
+      if (!(SquaredDistance(p.p, q.p) < reach * reach) || (o.x == 0.0 && o.y == 0.0)) {
+        return false;
+      }
+      return neighbour_arcs_.Add(o, m);
     });
+    neighbour_arcs_.Finish(boundary_);
     if (largest_exclusion_ == 0.0 || boundary_.empty()) return;
     exclusions_.AnyNear(Grown(at, p.r + largest_exclusion_), [&](const FieldPoint& e) {
       const double reach = p.r + e.r;
@@ -388,7 +395,6 @@ class FieldRun {
       queue_[k] = queue_.back();
       queue_.pop_back();
       const FieldPoint p = grid_.points()[static_cast<size_t>(index)];
-      boundary_.Reset();
       CutNeighbourArcs(p);
       for (int j = 0; j < tries_ && !boundary_.empty(); ++j) {
         const AvailableBoundary::Draw draw = boundary_.SampleDirection(rng_);
@@ -583,6 +589,8 @@ class FieldRun {
   std::vector<int32_t> beyond_stop_;
   // The current candidate's directions left to try.
   AvailableBoundary boundary_;
+  // CutNeighbourArcs' builder, kept between candidates for its capacity.
+  FieldCandidateBoundary neighbour_arcs_;
   // The points that last covered sweep cells (hints_[0, hint_count_), next_hint_ the oldest): the
   // next cell, a neighbour, is often covered by one of them, and a spot there in conflict with
   // one. Any point of the run answers either question truly, so asking them first changes no
