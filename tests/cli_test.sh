@@ -374,6 +374,11 @@ check "plane field layer: CSV header is id,x,y,layer,r" \
   test "$(head -n 1 "$work/out")" = "id,x,y,layer,r"
 expect_exit 0 plane "${forest[@]}" --rect -20,-20,20,20 --format svg
 check "plane layers SVG: a legend" grep -qF '>bushes</text>' "$work/out"
+check "plane layers SVG: each layer its colour, disks of half its spacing" python3 -c "
+import re, sys
+groups = re.findall(r'<g fill=\"(#[0-9a-f]+)\"[^>]*>(.*?)</g>', open('$work/out').read(), re.S)
+radii = [sorted(set(re.findall(r' r=\"([0-9.]+)\"', body))) for _, body in groups]
+sys.exit(len({fill for fill, _ in groups}) != 3 or radii != [['4'], ['1.5'], ['0.75']])"
 # Tiles and threads: the same rows as one query.
 rows "$work/whole" "${forest[@]}" --rect -20,-20,20,20 --threads 1
 rows "$work/left" "${forest[@]}" --rect -20,-20,3,20 --threads 3
@@ -432,5 +437,22 @@ expect_bad_argument "--world-file $work/repeated.yaml: world.layers[1].name" \
 printf 'seed: 7\nlayrs: []\n' >"$work/typo.yaml"
 expect_bad_argument "unknown key 'layrs'" plane --world-file "$work/typo.yaml" --rect 0,0,5,5
 expect_exit 2 plane --world-file "$work/forest.yaml" --seed 3 --rect 0,0,5,5
+# analyze --world-file: the report the flags give, for a layered, a plain and a field world.
+expect_exit 0 analyze --world-file "$work/forest.yaml" --rect 0,0,40,40 --sets 2 --json
+cp "$work/out" "$work/analyze-file.json"
+expect_exit 0 analyze "${forest[@]}" --exclusion rocks,trees=2.5 --rect 0,0,40,40 --sets 2 --json
+check "analyze --world-file, layered: the flags' report" cmp -s "$work/out" "$work/analyze-file.json"
+printf 'seed: 5\nmin_distance: 1.5\nalgorithm: a1\ndensity: 1.5\n' >"$work/plain.yaml"
+expect_exit 0 analyze --world-file "$work/plain.yaml" --rect 0,0,30,30 --sets 2
+cp "$work/out" "$work/analyze-file.txt"
+expect_exit 0 analyze --seed 5 --min-distance 1.5 --algorithm a1 --density 1.5 --rect 0,0,30,30 --sets 2
+check "analyze --world-file, plain: the flags' report" cmp -s "$work/out" "$work/analyze-file.txt"
+printf 'seed: 5\nradius_field: {noise: {r_min: 1, r_max: 4, frequency: 0.02}}\n' >"$work/field.yaml"
+expect_exit 0 analyze --world-file "$work/field.yaml" --rect 0,0,40,40 --sets 2 --json
+cp "$work/out" "$work/analyze-file.json"
+expect_exit 0 analyze --seed 5 --radius-noise 1,4,0.02 --rect 0,0,40,40 --sets 2 --json
+check "analyze --world-file, field: the flags' report" cmp -s "$work/out" "$work/analyze-file.json"
+expect_exit 2 analyze --world-file "$work/forest.yaml" --seed 3 --rect 0,0,5,5
+expect_bad_argument "unknown key 'layrs'" analyze --world-file "$work/typo.yaml" --rect 0,0,5,5
 
 report cli_test

@@ -438,7 +438,28 @@ int RunLayeredAnalyze(const AnalyzeArguments& arguments) {
   return 0;
 }
 
+int RunAnalyze(const AnalyzeArguments& arguments);
+
+// --world-file: a layered world is analysed from the file; any other runs as the options that
+// name it would (--seed, --min-distance, --algorithm, --density, its field as read from the
+// file), so every kind of world takes the same path however it is given.
+int RunWorldFileAnalyze(const AnalyzeArguments& arguments) {
+  StatusOr<World> world = ParseWorld(arguments.world);
+  if (!world.ok()) return ReportBadArguments("analyze", world.status());
+  if (world->layers() != nullptr) return RunLayeredAnalyze(arguments);
+  const WorldSpec& spec = world->spec();
+  AnalyzeArguments named = arguments;
+  named.world.world_file.clear();
+  named.world.seed = std::to_string(spec.seed);
+  named.world.min_distance = spec.min_distance;
+  named.world.density = spec.density;
+  named.algorithms = {std::string(WorldAlgorithmName(spec.algorithm))};
+  if (spec.radius_field.has_value()) return RunFieldAnalyze(named, *spec.radius_field);
+  return RunAnalyze(named);
+}
+
 int RunAnalyze(const AnalyzeArguments& arguments) {
+  if (!arguments.world.world_file.empty()) return RunWorldFileAnalyze(arguments);
   if (HasLayers(arguments.world.layers)) return RunLayeredAnalyze(arguments);
   StatusOr<std::optional<RadiusFieldSpec>> field = ParseLocalField(arguments.world.field);
   if (!field.ok()) return ReportBadArguments("analyze", field.status());
@@ -529,6 +550,7 @@ CommandRunner RegisterAnalyze(CLI::App& app) {
                     "dart: run until no spot is left (maximal)");
   AddFieldOptions(*command, arguments->world.field);
   AddLayerOptions(*command, arguments->world.layers);
+  AddWorldFileOption(*command, arguments->world);
   command
       ->add_option("--bands", arguments->bands,
                    "With a radius field: bands of R (geometric) the statistics are split by")

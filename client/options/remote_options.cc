@@ -61,11 +61,10 @@ StatusOr<v1::World> RemoteLayeredWorld(const WorldArguments& world) {
 
 StatusOr<v1::World> RemoteWorld(const WorldArguments& world) {
   if (!world.world_file.empty()) {
-    // The file's rasters are its own PNGs; a server knows its rasters by name.
+    // A raster_name is then the server's raster, as in its config (the server judges it);
+    // without one the whole world is checked here first, so bad values exit 2 without a call.
     if (!RasterPathsOfWorldFile(world.world_file).empty()) {
-      return InvalidArgument(
-          "--world-file: a raster field through --server names the server's raster: use --world "
-          "NAME or --layer NAME=raster:RASTER_NAME:...");
+      return RemoteWorldOfFile(world.world_file);
     }
     StatusOr<World> parsed = ParseWorld(world);
     if (!parsed.ok()) return parsed.status();

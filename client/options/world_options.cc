@@ -26,19 +26,23 @@ void AddWorldOptions(CLI::App& command, WorldArguments& arguments, bool with_rec
       ->capture_default_str();
   AddFieldOptions(command, arguments.field);
   AddLayerOptions(command, arguments.layers);
-  CLI::Option* file = command.add_option(
-      "--world-file", arguments.world_file,
-      "The world as YAML: the keys of a named world in scallopd's config (seed, min_distance, "
-      "algorithm, density, radius_field with raster_name a PNG path relative to the file, "
-      "layers, exclusions)");
-  for (const char* option : {"--seed", "--min-distance", "--algorithm", "--density",
-                             "--radius-noise", "--radius-raster", "--layer", "--exclusion"}) {
-    if (CLI::Option* other = command.get_option_no_throw(option)) file->excludes(other);
-  }
+  AddWorldFileOption(command, arguments);
   command.add_option("--threads", arguments.threads, "Threads generating regions")
       ->capture_default_str();
   if (with_rect) {
     command.add_option("--rect", arguments.rect, "Rectangle X0,Y0,X1,Y1 (half-open)")->required();
+  }
+}
+
+void AddWorldFileOption(CLI::App& command, WorldArguments& arguments) {
+  CLI::Option* file = command.add_option(
+      "--world-file", arguments.world_file,
+      "The world as YAML: the keys of a named world in scallopd's config (seed, min_distance, "
+      "algorithm, density, radius_field, layers, exclusions); a raster_name is a PNG path "
+      "relative to the file, or with --server the name of a raster the server loaded");
+  for (const char* option : {"--seed", "--min-distance", "--algorithm", "--density",
+                             "--radius-noise", "--radius-raster", "--layer", "--exclusion"}) {
+    if (CLI::Option* other = command.get_option_no_throw(option)) file->excludes(other);
   }
 }
 
@@ -80,6 +84,15 @@ StatusOr<World> WorldFromFile(const std::string& path) {
 }
 
 }  // namespace
+
+StatusOr<v1::World> RemoteWorldOfFile(const std::string& path) {
+  const std::string where = "--world-file " + path;
+  try {
+    return WorldMessageFromYaml(YAML::LoadFile(path), where);
+  } catch (const YAML::Exception& e) {
+    return InvalidArgument(where + ": " + e.what());
+  }
+}
 
 std::vector<std::string> RasterPathsOfWorldFile(const std::string& path) {
   try {

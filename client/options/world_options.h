@@ -37,6 +37,10 @@ struct WorldArguments {
 // missing one is a parse error.
 void AddWorldOptions(CLI::App& command, WorldArguments& arguments, bool with_rect = true);
 
+// Adds --world-file, excluding the world options `command` already has (AddWorldOptions adds
+// it; `analyze`, which takes the world options its own way, adds it after them).
+void AddWorldFileOption(CLI::App& command, WorldArguments& arguments);
+
 struct WorldQuery {
   World world;
   Rect rect;
@@ -56,6 +60,12 @@ StatusOr<WorldQuery> ParseWorldQuery(const WorldArguments& arguments);
 // one way the CLI turns typed options into a World. A field's errors name its option
 // (ParseLocalField).
 StatusOr<World> ParseWorld(const WorldArguments& arguments);
+
+// --world-file as the world a request to scallopd carries, for a file with raster fields: each
+// raster_name names a raster the server loaded (its config's `rasters`), as in a named world of
+// its config, and the server judges the values. The keys are checked here (INVALID_ARGUMENT
+// led by "--world-file PATH").
+StatusOr<v1::World> RemoteWorldOfFile(const std::string& path);
 
 // The raster names (PNG paths) a --world-file's fields give, its own and its layers'; empty
 // when it has none or cannot be read (ParseWorld then says why).

@@ -10,7 +10,8 @@
 
 namespace scallop {
 
-StatusOr<World> WorldFromMessage(const v1::World& message, const RasterCatalog* rasters) {
+StatusOr<WorldSpec> WorldSpecFromMessage(const v1::World& message, const RasterCatalog* rasters,
+                                         const std::string& where) {
   WorldSpec spec;
   spec.seed = message.seed();
   spec.min_distance = message.min_distance();
@@ -26,7 +27,7 @@ StatusOr<World> WorldFromMessage(const v1::World& message, const RasterCatalog* 
       break;
     default:
       return InvalidArgument(
-          "world.algorithm: must be ALGORITHM_A1, ALGORITHM_A2 or ALGORITHM_A3, got " +
+          where + ".algorithm: must be ALGORITHM_A1, ALGORITHM_A2 or ALGORITHM_A3, got " +
           std::to_string(message.algorithm()));
   }
   // proto3 cannot tell an unset double from 0, and 0 is never a valid density
@@ -37,7 +38,8 @@ StatusOr<World> WorldFromMessage(const v1::World& message, const RasterCatalog* 
   const RasterCatalog none;
   const RasterCatalog& catalog = rasters != nullptr ? *rasters : none;
   if (message.has_radius_field()) {
-    StatusOr<RadiusFieldSpec> field = RadiusFieldFromMessage(message.radius_field(), catalog);
+    StatusOr<RadiusFieldSpec> field =
+        RadiusFieldFromMessage(message.radius_field(), catalog, where + ".radius_field");
     if (!field.ok()) return field.status();
     spec.radius_field = std::move(*field);
   }
@@ -46,7 +48,7 @@ StatusOr<World> WorldFromMessage(const v1::World& message, const RasterCatalog* 
     LayerSpec own{.name = layer.name(), .min_distance = layer.min_distance()};
     if (layer.has_radius_field()) {
       StatusOr<RadiusFieldSpec> field = RadiusFieldFromMessage(
-          layer.radius_field(), catalog, "world.layers[" + std::to_string(k) + "].radius_field");
+          layer.radius_field(), catalog, where + ".layers[" + std::to_string(k) + "].radius_field");
       if (!field.ok()) return field.status();
       own.radius_field = std::move(*field);
     }
@@ -57,7 +59,13 @@ StatusOr<World> WorldFromMessage(const v1::World& message, const RasterCatalog* 
                                .second = exclusion.second(),
                                .distance = exclusion.distance()});
   }
-  return World::Create(spec);
+  return spec;
+}
+
+StatusOr<World> WorldFromMessage(const v1::World& message, const RasterCatalog* rasters) {
+  StatusOr<WorldSpec> spec = WorldSpecFromMessage(message, rasters);
+  if (!spec.ok()) return spec.status();
+  return World::Create(*spec);
 }
 
 v1::World WorldToMessage(const World& world, const RasterCatalog* rasters) {

@@ -25,6 +25,13 @@ namespace scallop {
 // unknown). Cost: O(1); a raster field O(pixels) (its checks and mask table).
 StatusOr<World> WorldFromMessage(const v1::World& message, const RasterCatalog* rasters = nullptr);
 
+// The spec WorldFromMessage hands World::Create: the zero defaults filled in, each radius field
+// read (RadiusFieldFromMessage) with its errors named under `where` (`where`.radius_field...,
+// `where`.layers[k].radius_field...; "world" for a request, a config's key for YAML), the
+// rest left to World::Create. INVALID_ARGUMENT naming `where`.algorithm for an unknown one.
+StatusOr<WorldSpec> WorldSpecFromMessage(const v1::World& message, const RasterCatalog* rasters,
+                                         const std::string& where = "world");
+
 // The world as a message, every field explicit (no zero defaults left); a
 // raster field by its name and pixel hash in `rasters` (null, or an image
 // it does not hold: the name left empty).

@@ -1,17 +1,17 @@
-// WorldFromYaml: each key read into the message or spec it mirrors, then World::Create.
+// WorldMessageFromYaml: each key read into the message it mirrors; WorldFromYaml: that message
+// read as a request's would be (its rasters from a catalog), then World::Create.
 #include "world_yaml.h"
 
 #include <optional>
 
-#include "field_messages.h"
+#include "world_messages.h"
 
 namespace scallop {
 namespace {
 
-// A `radius_field` as the message it mirrors (the proto's field names), then read as a
-// request's would be, with errors named `where`.noise.frequency and so on.
-StatusOr<RadiusFieldSpec> RadiusFieldFromYaml(const YAML::Node& node, const RasterCatalog& rasters,
-                                              const std::string& where) {
+// A `radius_field` as the message it mirrors (the proto's field names), its raster by the name it
+// gives; keys named `where`.noise.KEY and so on.
+StatusOr<v1::RadiusField> RadiusFieldFromYaml(const YAML::Node& node, const std::string& where) {
   if (Status keys = CheckYamlKeys(node, {"noise", "raster"}, where); !keys.ok()) return keys;
   v1::RadiusField message;
   if (const YAML::Node noise = node["noise"]) {
@@ -45,17 +45,20 @@ StatusOr<RadiusFieldSpec> RadiusFieldFromYaml(const YAML::Node& node, const Rast
     out.set_r_min(raster["r_min"].as<double>(0.0));
     out.set_r_max(raster["r_max"].as<double>(0.0));
   }
-  return RadiusFieldFromMessage(message, rasters, where);
+  return message;
 }
 
-StatusOr<std::optional<RadiusFieldSpec>> OptionalField(const YAML::Node& node,
-                                                       const RasterCatalog& rasters,
-                                                       const std::string& where) {
-  if (!node["radius_field"]) return std::optional<RadiusFieldSpec>();
-  StatusOr<RadiusFieldSpec> read =
-      RadiusFieldFromYaml(node["radius_field"], rasters, where + ".radius_field");
+// The `radius_field` of `holder` (a world or a layer) into `out`, if it has one.
+Status ReadOptionalField(const YAML::Node& holder, const std::string& where, v1::RadiusField& out,
+                         bool& has) {
+  has = false;
+  if (!holder["radius_field"]) return Status::Ok();
+  StatusOr<v1::RadiusField> read =
+      RadiusFieldFromYaml(holder["radius_field"], where + ".radius_field");
   if (!read.ok()) return read.status();
-  return std::optional<RadiusFieldSpec>(*std::move(read));
+  out = *std::move(read);
+  has = true;
+  return Status::Ok();
 }
 
 }  // namespace
@@ -70,21 +73,23 @@ Status CheckYamlKeys(const YAML::Node& node, const std::set<std::string>& known,
   return Status::Ok();
 }
 
-StatusOr<World> WorldFromYaml(const YAML::Node& node, const RasterCatalog& rasters,
-                              const std::string& where) {
+StatusOr<v1::World> WorldMessageFromYaml(const YAML::Node& node, const std::string& where) {
   const std::set<std::string> known{"seed",         "min_distance", "algorithm", "density",
                                     "radius_field", "layers",       "exclusions"};
   if (Status keys = CheckYamlKeys(node, known, where); !keys.ok()) return keys;
-  WorldSpec spec{.seed = node["seed"].as<uint64_t>(0),
-                 .min_distance = node["min_distance"].as<double>(1.0),
-                 .density = node["density"].as<double>(2.0)};
   StatusOr<WorldAlgorithm> algorithm =
       ParseWorldAlgorithm(node["algorithm"].as<std::string>("a3"), where + ".algorithm");
   if (!algorithm.ok()) return algorithm.status();
-  spec.algorithm = *algorithm;
-  StatusOr<std::optional<RadiusFieldSpec>> field = OptionalField(node, rasters, where);
-  if (!field.ok()) return field.status();
-  spec.radius_field = *std::move(field);
+  v1::World message = WorldToMessage(WorldSpec{.seed = node["seed"].as<uint64_t>(0),
+                                               .min_distance = node["min_distance"].as<double>(1.0),
+                                               .algorithm = *algorithm,
+                                               .density = node["density"].as<double>(2.0)});
+  bool has_field = false;
+  if (Status field = ReadOptionalField(node, where, *message.mutable_radius_field(), has_field);
+      !field.ok()) {
+    return field;
+  }
+  if (!has_field) message.clear_radius_field();
   if (const YAML::Node layers = node["layers"]) {
     if (!layers.IsSequence()) return InvalidArgument(where + ".layers: must be a list");
     for (size_t k = 0; k < layers.size(); ++k) {
@@ -93,11 +98,14 @@ StatusOr<World> WorldFromYaml(const YAML::Node& node, const RasterCatalog& raste
           !keys.ok()) {
         return keys;
       }
-      StatusOr<std::optional<RadiusFieldSpec>> layer_field = OptionalField(layers[k], rasters, at);
-      if (!layer_field.ok()) return layer_field.status();
-      spec.layers.push_back({.name = layers[k]["name"].as<std::string>(""),
-                             .min_distance = layers[k]["min_distance"].as<double>(1.0),
-                             .radius_field = *std::move(layer_field)});
+      v1::Layer& layer = *message.add_layers();
+      layer.set_name(layers[k]["name"].as<std::string>(""));
+      layer.set_min_distance(layers[k]["min_distance"].as<double>(1.0));
+      if (Status field = ReadOptionalField(layers[k], at, *layer.mutable_radius_field(), has_field);
+          !field.ok()) {
+        return field;
+      }
+      if (!has_field) layer.clear_radius_field();
     }
   }
   if (const YAML::Node exclusions = node["exclusions"]) {
@@ -108,12 +116,22 @@ StatusOr<World> WorldFromYaml(const YAML::Node& node, const RasterCatalog& raste
           !keys.ok()) {
         return keys;
       }
-      spec.exclusions.push_back({.first = exclusions[n]["first"].as<std::string>(""),
-                                 .second = exclusions[n]["second"].as<std::string>(""),
-                                 .distance = exclusions[n]["distance"].as<double>(-1.0)});
+      v1::LayerExclusion& exclusion = *message.add_exclusions();
+      exclusion.set_first(exclusions[n]["first"].as<std::string>(""));
+      exclusion.set_second(exclusions[n]["second"].as<std::string>(""));
+      exclusion.set_distance(exclusions[n]["distance"].as<double>(-1.0));
     }
   }
-  StatusOr<World> world = World::Create(spec);
+  return message;
+}
+
+StatusOr<World> WorldFromYaml(const YAML::Node& node, const RasterCatalog& rasters,
+                              const std::string& where) {
+  StatusOr<v1::World> message = WorldMessageFromYaml(node, where);
+  if (!message.ok()) return message.status();
+  StatusOr<WorldSpec> spec = WorldSpecFromMessage(*message, &rasters, where);
+  if (!spec.ok()) return spec.status();
+  StatusOr<World> world = World::Create(*spec);
   if (!world.ok()) return InvalidArgument(where + ": " + world.status().message());
   return world;
 }

@@ -14,6 +14,7 @@
 #include "raster_catalog.h"
 #include "scallop/base/status.h"
 #include "scallop/plane/world.h"
+#include "scallop/v1/scallop.pb.h"
 
 namespace scallop {
 
@@ -22,7 +23,16 @@ namespace scallop {
 Status CheckYamlKeys(const YAML::Node& node, const std::set<std::string>& known,
                      const std::string& where);
 
-// The world `node` describes, its rasters named in `rasters`. Errors are INVALID_ARGUMENT led by
+// The world `node` describes as the message a request carries, each raster_name as it is given
+// (a server's raster names, which it judges), its values unchecked but for the keys (unknown
+// ones named `where`.KEY, `where`.layers[1].KEY...), the algorithm's name (`where`.algorithm)
+// and the shapes of lists and maps. Missing keys take the config's defaults (min_distance 1,
+// algorithm a3, density 2). For a client that sends a YAML world to scallopd. May throw
+// YAML::Exception for a value of the wrong type.
+StatusOr<v1::World> WorldMessageFromYaml(const YAML::Node& node, const std::string& where);
+
+// The world `node` describes (WorldMessageFromYaml, then read as a request's world would be),
+// its rasters named in `rasters`. Errors are INVALID_ARGUMENT led by
 // `where` ("config.yaml: worlds.coast"): a key unknown, a field's value (`where`.radius_field.noise
 // .frequency, `where`.layers[1].radius_field...), or World::Create's message after `where`: ".
 // May throw YAML::Exception for a value of the wrong type (the caller names the file).

@@ -4,7 +4,9 @@
 # raster made here); `scallop points`, `stream`, `follow`, `verify` and `nearest` serve it by
 # name and inline; the same world given inline with --layer prints byte for byte what
 # `scallop plane`, `verify` and `nearest` print locally (CSV id,x,y,layer, pages, filters,
-# SVG); bad layer names exit 1 naming the field (server) or 2 (client).
+# SVG); a --world-file with raster fields is sent naming the server's rasters and prints what
+# the same file prints locally; bad layer and raster names exit 1 naming the field (server) or 2
+# (client).
 # Usage: cli_layers_remote_test.sh path/to/scallop path/to/scallopd
 set -euo pipefail
 
@@ -19,6 +21,7 @@ cat >"$work/config.yaml" <<'YAML'
 listen: 127.0.0.1:0
 rasters:
   road: road.png
+  road.png: road.png  # named as its file, so one --world-file serves local runs and the server
 worlds:
   forest:
     seed: 7
@@ -64,6 +67,58 @@ run "$scallop" verify --server "$server" --world forest --rect -20,-10,20,10
 expect_status 0 "verify of the forest"
 if grep -q '^layer rocks: ' "$work/out" && grep -q '^pairs across layers' "$work/out"; then pass
 else fail "verify output: $(cat "$work/out")"; fi
+
+# --world-file with raster fields through --server: each raster_name names the server's raster
+# (as in its config); here the name is also the PNG's path next to the file, so the same file
+# runs locally, and the answers are byte for byte the local ones and the named forest's.
+cat >"$work/forest.yaml" <<'YAML'
+seed: 7
+layers:
+  - {name: trees, min_distance: 8}
+  - {name: bushes, min_distance: 3}
+  - {name: rocks, radius_field: {raster: {raster_name: road.png, origin_x: -30, origin_y: -20, pixel_size: 1, r_min: 1.5, r_max: 1.5}}}
+exclusions:
+  - {first: rocks, second: trees, distance: 2.5}
+YAML
+run "$scallop" plane --world-file "$work/forest.yaml" --rect "$rect"
+expect_status 0 "plane of the forest file"
+cp "$work/out" "$work/file-local.csv"
+if cmp -s "$work/file-local.csv" "$work/forest.csv"; then pass; else
+  fail "the forest file differs from the named forest"; fi
+run "$scallop" points --server "$server" --world-file "$work/forest.yaml" --rect "$rect" \
+  --page-size 29
+expect_status 0 "points of the forest file"
+if cmp -s "$work/out" "$work/file-local.csv"; then pass; else fail "served forest file differs"; fi
+run "$scallop" stream --server "$server" --world-file "$work/forest.yaml" --rect "$rect" \
+  --layers trees,rocks
+if cmp -s "$work/out" "$work/filtered.csv"; then pass; else fail "streamed forest file differs"; fi
+# verify: the same report (its first line names the world, a served raster by the server's name).
+run "$scallop" verify --world-file "$work/forest.yaml" --rect -20,-10,20,10
+tail -n +2 "$work/out" >"$work/file-verify.txt"
+run "$scallop" verify --server "$server" --world-file "$work/forest.yaml" --rect -20,-10,20,10
+expect_status 0 "verify of the forest file"
+if tail -n +2 "$work/out" | cmp -s - "$work/file-verify.txt"; then pass; else
+  fail "served verify of the forest file differs: $(cat "$work/out")"; fi
+# A one-layer world's own raster field, likewise.
+printf '%s\n' 'seed: 3' 'radius_field: {raster: {raster_name: road.png, origin_x: -30, origin_y: -20,' \
+  '                          pixel_size: 1, r_min: 1.5, r_max: 1.5}}' >"$work/masked.yaml"
+run "$scallop" plane --world-file "$work/masked.yaml" --rect "$rect"
+cp "$work/out" "$work/masked.csv"
+run "$scallop" points --server "$server" --world-file "$work/masked.yaml" --rect "$rect"
+if [ "$(head -n 1 "$work/out")" = "id,x,y,r" ] && cmp -s "$work/out" "$work/masked.csv"; then pass
+else fail "served masked world file differs"; fi
+# A raster the server has not loaded: INVALID_ARGUMENT naming the field, exit 1.
+sed 's/raster_name: road.png/raster_name: nowhere.png/' "$work/forest.yaml" >"$work/unknown.yaml"
+run "$scallop" points --server "$server" --world-file "$work/unknown.yaml" --rect "$rect"
+expect_status 1 "a world file naming a raster the server has not"
+if grep -q 'INVALID_ARGUMENT: world.layers\[2\].radius_field.raster.raster_name: no raster' \
+  "$work/err"; then pass; else fail "unknown raster message: $(cat "$work/err")"; fi
+# A key the schema has not is the client's to refuse (exit 2), raster or not.
+sed 's/pixel_size/pixel_sise/' "$work/forest.yaml" >"$work/typo.yaml"
+run "$scallop" points --server "$server" --world-file "$work/typo.yaml" --rect "$rect"
+expect_status 2 "a typo in a world file with rasters"
+if grep -q "layers\[2\].radius_field.raster: unknown key 'pixel_sise'" "$work/err"; then pass; else
+  fail "typo message: $(cat "$work/err")"; fi
 
 # Inline with --layer: byte for byte the local commands' output.
 grove=(--seed 9 --layer oaks=6 --layer ferns=noise:1.5,3,0.02,3,4)

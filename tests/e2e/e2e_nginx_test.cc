@@ -519,6 +519,106 @@ TEST_F(E2eNginxTest, BrokenStreamResumesWhereItStopped) {
   ASSERT_TRUE(StartReplica(victim, replicas_[victim]->address()));
 }
 
+// A stream's points, ids and layers, as received.
+bool SamePoints(const PlanePoints& got, const PlanePoints& expected) {
+  return got.ids == expected.ids && got.positions == expected.positions &&
+         got.layers == expected.layers;
+}
+
+// A layered world's stream (trees, bushes, rocks) whose replica dies mid-layer, unfiltered and
+// with the filter {rocks, trees}: StreamResumeRequests' streams, on another replica, continue
+// it, and the whole equals an unbroken stream's ids, positions and layers. Resumes planted from
+// the same break, one repeating the last region and one dropping the filter for the later
+// layers, are caught by the same comparison. The calls go to the replicas directly (the break
+// is then UNAVAILABLE): nginx, which marks a replica it sees fail as down for 5 s, would see
+// two more failures next to the tests' others and find every replica down (502).
+TEST_F(E2eNginxTest, BrokenLayeredStreamResumesWhereItStopped) {
+  client::ScallopClient direct = direct_->Client();
+  // Break the stream of a forest of seed `seed` on replica `victim` after `chunks` chunks, which
+  // must leave it in layer `layer`. Each case has its own seed, so every replica is cold for it: a
+  // stream waits on the generation of its next regions, so none of them is on the way to the client
+  // when the replica dies (with a warm replica, chunks written before the kill still arrive).
+  auto break_and_resume = [&](uint64_t seed, std::vector<std::string> filter, int victim,
+                              size_t chunks, uint32_t layer) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    WorldSpec forest{.seed = seed};
+    forest.layers = {{.name = "trees", .min_distance = 8},
+                     {.name = "bushes", .min_distance = 3},
+                     {.name = "rocks", .min_distance = 1.5}};
+    v1::DescribeWorldRequest describe;
+    *describe.mutable_world() = WorldToMessage(forest);
+    v1::DescribeWorldResponse world;
+    ASSERT_TRUE(direct.DescribeWorld(describe, world).ok());
+    ASSERT_EQ(world.layers_size(), 3);
+    v1::StreamPointsRequest stream;
+    *stream.mutable_world() = describe.world();
+    *stream.mutable_rect() = RectToMessage({-150.5, -120, 170, 140.25});
+    for (const std::string& name : filter) stream.add_layers(name);
+    PlanePoints expected;
+    ASSERT_TRUE(direct.StreamAllPoints(stream, expected).ok());
+    ASSERT_FALSE(expected.layers.empty());
+
+    PlanePoints got;
+    std::optional<client::StreamPosition> last;
+    client::ScallopClient replica = replicas_[victim]->Client();
+    client::ScallopClient other = replicas_[(victim + 1) % kReplicas]->Client();
+    const grpc::Status broken =
+        replica.StreamPoints(stream,
+                             [&](const v1::PointsChunk& chunk) {
+                               last = client::StreamPosition::Of(chunk);
+                               EXPECT_TRUE(ReadPoints(chunk.points(), got).ok());
+                               if (--chunks == 0) KillReplica(victim);  // it waits on us
+                               return true;
+                             },
+                             {.timeout = std::chrono::seconds(60)});
+    ASSERT_FALSE(broken.ok()) << "the stream ended normally";
+    EXPECT_NE(broken.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+    ASSERT_TRUE(last.has_value());
+    std::cerr << "broken layered stream: " << client::DescribeStatus(broken) << " in layer "
+              << last->layer << ", region (" << last->region.i << ", " << last->region.j
+              << "), after " << got.ids.size() << " of " << expected.ids.size() << " points\n";
+    EXPECT_EQ(last->layer, layer);
+    ASSERT_LT(got.ids.size(), expected.ids.size());
+
+    // The rest from requests, on another replica.
+    auto resumed = [&](const std::vector<v1::StreamPointsRequest>& requests) {
+      PlanePoints whole = got;
+      for (const v1::StreamPointsRequest& rest : requests) {
+        const grpc::Status status = other.StreamAllPoints(rest, whole);
+        EXPECT_TRUE(status.ok()) << client::DescribeStatus(status);
+      }
+      return whole;
+    };
+    StatusOr<std::vector<v1::StreamPointsRequest>> requests =
+        client::StreamResumeRequests(stream, world, last);
+    ASSERT_TRUE(requests.ok()) << requests.status().message();
+    EXPECT_TRUE(SamePoints(resumed(*requests), expected));
+
+    std::vector<v1::StreamPointsRequest> repeats_last = *requests;
+    v1::StreamPointsRequest last_region = stream;
+    const double side = world.layers(static_cast<int>(last->layer)).region_side();
+    const Rect rect = RectFromMessage(stream.rect());
+    *last_region.mutable_rect() = RectToMessage({std::max(rect.x0, last->region.i * side),
+                                                 std::max(rect.y0, last->region.j * side),
+                                                 std::min(rect.x1, (last->region.i + 1) * side),
+                                                 std::min(rect.y1, (last->region.j + 1) * side)});
+    last_region.clear_layers();
+    last_region.add_layers(world.layers(static_cast<int>(last->layer)).name());
+    repeats_last.insert(repeats_last.begin(), last_region);
+    EXPECT_FALSE(SamePoints(resumed(repeats_last), expected)) << "a repeated region passed";
+    v1::StreamPointsRequest unfiltered = stream;
+    unfiltered.clear_layers();
+    std::vector<v1::StreamPointsRequest> forgets_filter =
+        *client::StreamResumeRequests(unfiltered, world, last);
+    if (!filter.empty()) {
+      EXPECT_FALSE(SamePoints(resumed(forgets_filter), expected)) << "a lost filter passed";
+    }
+    ASSERT_TRUE(StartReplica(victim, replicas_[victim]->address()));
+  };
+  break_and_resume(7, {}, 0, 16, 1);                 // the trees' 12 regions, then mid-bushes
+  break_and_resume(8, {"rocks", "trees"}, 1, 4, 0);  // in trees, bushes skipped, then rocks
+}
+
 // A Follow call whose replica dies ends with a status; a new call that names
 // the regions held whole gets the rest of the view and none of them again.
 TEST_F(E2eNginxTest, BrokenFollowResumesWithHeldRegions) {
