@@ -38,6 +38,7 @@ worlds:
       - {name: ferns, radius_field: {noise: {r_min: 1.5, r_max: 3, frequency: 0.02, noise_seed: 4}}}
 YAML
 start_scallopd server --config "$work/config.yaml"
+server_pid=$started_pid
 server=$address
 
 rect=-30,-20,30,20
