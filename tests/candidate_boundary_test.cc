@@ -357,7 +357,9 @@ TEST(DiskArcTest, CutAroundPointLeavesTheRangesOfCuttingEveryArc) {
   int empty = 0, with_ranges = 0, caught = 0, tried = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     const double d = 1.0;
-    const auto [centre, max_abs, spacing] = RandomPlace(rng, trial);
+    const Place place = RandomPlace(rng, trial);
+    const Vec2 centre = place.centre;
+    const double max_abs = place.max_abs, spacing = place.spacing;
     BoundaryExclusions exclusions(RandomDisks(rng, centre, 9), d, spacing, max_abs);
     AvailableBoundary start;
     start.Reset();
@@ -433,7 +435,9 @@ TEST(DiskArcTest, CutAroundDiskLeavesTheRangesOfCuttingEveryArc) {
   int empty = 0, with_ranges = 0, caught = 0, tried = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     const double d = 1.0;
-    const auto [centre, max_abs, spacing] = RandomPlace(rng, trial);
+    const Place place = RandomPlace(rng, trial);
+    const Vec2 centre = place.centre;
+    const double max_abs = place.max_abs, spacing = place.spacing;
     std::vector<ExclusionDisk> disks = RandomDisks(rng, centre, 6);
     disks.push_back({centre, rng.Uniform() < 0.5 ? 0.88 : 2.5});
     BoundaryExclusions exclusions(disks, d, spacing, max_abs);
