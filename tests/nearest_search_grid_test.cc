@@ -4,6 +4,7 @@
 // the exact answer or refuse to certify one.
 #include "scallop/noise/nearest_search_grid.h"
 
+#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "scallop/noise/cell_value.h"
 #include "scallop/random/rng.h"
 
 namespace scallop {
@@ -49,6 +51,61 @@ TwoNearest ScanAll(const PointSet& set, Vec2 p) {
 
 bool Same(const TwoNearest& a, const TwoNearest& b) {
   return a.id1 == b.id1 && a.id2 == b.id2 && a.squared1 == b.squared1 && a.squared2 == b.squared2;
+}
+
+// The basis `truth` gives, field by field, against `found`.
+bool SameBasis(const TwoNearest& truth, const NearestPoint& found) {
+  return found.id == truth.id1 && found.second_id == truth.id2 &&
+         found.position.x == truth.point1.x && found.position.y == truth.point1.y &&
+         found.f1 == std::sqrt(truth.squared1) && found.f2 == std::sqrt(truth.squared2) &&
+         found.cell_value == CellValue(truth.id1);
+}
+
+// AnswerEach over `positions`, entries in reverse order of their slots and
+// an odd count (so that the pairs straddle the entries and one is alone),
+// against the plain scan: where FindTwoNearest certifies, the batch's
+// answer must be the scan's; where it refuses, the batch must refuse the
+// same entry and leave its slot alone. Returns the mismatches, reporting
+// the first few. `fault` plants one, for the test that the check sees it.
+enum class BatchFault { kNone, kCrossedSlots, kUnreportedRefusal, kLastBit };
+int CountBatchMismatches(const NearestSearchGrid& grid, const PointSet& set,
+                         std::vector<Vec2> positions, BatchFault fault = BatchFault::kNone) {
+  if (positions.size() % 2 == 0) positions.pop_back();
+  const auto count = static_cast<uint32_t>(positions.size());
+  std::vector<IndexedPosition> entries;
+  for (uint32_t k = 0; k < count; ++k) entries.push_back({positions[k], count - 1 - k});
+  if (fault == BatchFault::kCrossedSlots) std::swap(entries[0].index, entries[1].index);
+  NearestPoint untouched;
+  untouched.id = 0x5eed, untouched.f1 = -1;
+  std::vector<NearestPoint> results(count, untouched);
+  std::vector<uint32_t> refused = {99};  // appended to, not replaced
+  grid.AnswerEach(entries, results, refused);
+  if (fault == BatchFault::kUnreportedRefusal && refused.size() > 1) refused.pop_back();
+  if (fault == BatchFault::kLastBit) results[0].f2 = std::nextafter(results[0].f2, 10.0);
+  int mismatches = 0;
+  auto report = [&](const std::string& what) {
+    if (++mismatches <= 3) ADD_FAILURE() << what;
+  };
+  size_t next_refused = 1;
+  for (uint32_t k = 0; k < count; ++k) {
+    const Vec2 p = positions[k];
+    const NearestPoint& found = results[count - 1 - k];
+    TwoNearest single;
+    if (!grid.FindTwoNearest(p, single)) {
+      if (next_refused >= refused.size() || refused[next_refused] != k) {
+        report("not refused: entry " + std::to_string(k));
+      } else {
+        ++next_refused;
+      }
+      if (found.id != untouched.id || found.f1 != untouched.f1) {
+        report("slot of refused entry " + std::to_string(k) + " written");
+      }
+      continue;
+    }
+    if (!SameBasis(ScanAll(set, p), found)) report("wrong answer for entry " + std::to_string(k));
+  }
+  if (refused.size() != next_refused) report("refused entries that were certified");
+  return mismatches;
 }
 
 // Every test runs the search's first pass in each vector width: two lanes
@@ -89,6 +146,7 @@ TEST_P(NearestSearchGridTest, TiesOnALatticeGoToTheSmallerId) {
     const NearestSearchGrid grid(1.0, {0, 0}, set.points, set.ids, GetParam());
     Rng rng(seed);
     int ties = 0;
+    std::vector<Vec2> positions;
     for (int k = 0; k < 2000; ++k) {
       // Cell centres (four-way ties), edge midpoints (two-way) and lattice points.
       const double x = static_cast<double>(rng.Below(16)) + 0.5 * static_cast<double>(rng.Below(2));
@@ -98,8 +156,10 @@ TEST_P(NearestSearchGridTest, TiesOnALatticeGoToTheSmallerId) {
       const TwoNearest truth = ScanAll(set, {x, y});
       EXPECT_TRUE(Same(truth, found)) << "seed " << seed << " at " << x << ", " << y;
       if (found.squared1 == found.squared2) ++ties;
+      positions.push_back({x, y});
     }
     EXPECT_GT(ties, 500);
+    EXPECT_EQ(CountBatchMismatches(grid, set, positions), 0) << "seed " << seed;
   }
 }
 
@@ -116,8 +176,10 @@ TEST_P(NearestSearchGridTest, CertifiedAnswersAreExactOnSparseSubsets) {
       set.ids.push_back(rng.NextBits());
     }
     const NearestSearchGrid grid(1.0, {0, 0}, set.points, set.ids, GetParam());
+    std::vector<Vec2> positions;
     for (int k = 0; k < 500; ++k) {
       const Vec2 p{rng.Uniform(-3, 19), rng.Uniform(-3, 19)};
+      positions.push_back(p);
       TwoNearest found;
       if (!grid.FindTwoNearest(p, found)) {
         ++refused;
@@ -126,6 +188,7 @@ TEST_P(NearestSearchGridTest, CertifiedAnswersAreExactOnSparseSubsets) {
       ++certified;
       EXPECT_TRUE(Same(ScanAll(set, p), found)) << "seed " << seed << " at " << p.x << ", " << p.y;
     }
+    EXPECT_EQ(CountBatchMismatches(grid, set, positions), 0) << "seed " << seed;
   }
   EXPECT_GT(certified, 1000);
   EXPECT_GT(refused, 1000);  // sparse sets often need cells beyond the grid
@@ -175,11 +238,13 @@ TEST_P(NearestSearchGridTest, FirstPassIsExactOnNearTiesPointsDenseRowsAndExtrem
     }
     for (size_t k = 0; k < set.points.size(); ++k) set.ids.push_back(rng.NextBits());
     const NearestSearchGrid grid(scale, key, set.points, set.ids, GetParam());
-    check(grid, set, p);
+    std::vector<Vec2> positions = {p};
     for (int k = 0; k < 50; ++k) {
-      check(grid, set, at(rng.Uniform(0, 16), rng.Uniform(0, 16)));
-      check(grid, set, set.points[rng.Below(set.points.size())]);  // on a point
+      positions.push_back(at(rng.Uniform(0, 16), rng.Uniform(0, 16)));
+      positions.push_back(set.points[rng.Below(set.points.size())]);  // on a point
     }
+    for (const Vec2& q : positions) check(grid, set, q);
+    EXPECT_EQ(CountBatchMismatches(grid, set, positions), 0) << "seed " << seed;
   }
   EXPECT_GT(certified, 3000);
   EXPECT_GT(ties, 5);
@@ -207,6 +272,31 @@ TEST_P(NearestSearchGridTest, RefusesRatherThanAnswerWhenPointsAreMissing) {
   EXPECT_FALSE(full.FindTwoNearest({-2.5, 5}, found));
   EXPECT_FALSE(full.FindTwoNearest({5, 19.5}, found));
   EXPECT_TRUE(full.FindTwoNearest({-1.5, 17.5}, found));
+  // The batch refuses the same positions, among answered ones.
+  EXPECT_EQ(CountBatchMismatches(full, set, {{-2.5, 5}, {3, 4.5}, {5, 19.5}, {-1.5, 17.5}, {8, 8}}),
+            0);
+}
+
+// The batch comparison must notice answers in the wrong slots (a pair's
+// two answers crossed), a refusal not reported and a wrong last bit.
+TEST_P(NearestSearchGridTest, BatchComparisonCatchesPlantedFaults) {
+  const PointSet set = Lattice(4);
+  const NearestSearchGrid grid(1.0, {0, 0}, set.points, set.ids, GetParam());
+  // The first is refused (its block leaves the grid), the others answered.
+  const std::vector<Vec2> positions = {{-2.5, 5}, {3.2, 4.1}, {9.7, 2.2}, {12.4, 15.9}, {7.3, 7.9}};
+  EXPECT_EQ(CountBatchMismatches(grid, set, positions), 0);
+  for (const BatchFault fault :
+       {BatchFault::kCrossedSlots, BatchFault::kUnreportedRefusal, BatchFault::kLastBit}) {
+    ::testing::TestPartResultArray failures;
+    int mismatches = 0;
+    {
+      const ::testing::ScopedFakeTestPartResultReporter quiet(
+          ::testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &failures);
+      mismatches = CountBatchMismatches(grid, set, positions, fault);
+    }
+    EXPECT_GT(mismatches, 0) << static_cast<int>(fault);
+    EXPECT_EQ(failures.size(), mismatches) << static_cast<int>(fault);
+  }
 }
 
 }  // namespace

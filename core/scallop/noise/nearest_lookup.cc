@@ -9,7 +9,6 @@
 #include <string>
 
 #include "scallop/base/number_text.h"
-#include "scallop/noise/cell_value.h"
 #include "scallop/plane/query_rect.h"
 #include "scallop/random/rng.h"
 
@@ -80,15 +79,6 @@ Status StopStatus() {
 
 bool StopNow(const StopRequested& stop) { return stop && stop(); }
 
-NearestPoint FromTwoNearest(const TwoNearest& best) {
-  return {.id = best.id1,
-          .position = best.point1,
-          .f1 = std::sqrt(best.squared1),
-          .f2 = std::sqrt(best.squared2),
-          .second_id = best.id2,
-          .cell_value = CellValue(best.id1)};
-}
-
 }  // namespace
 
 size_t NearestLookup::KeyHash::operator()(const Key& key) const {
@@ -101,13 +91,10 @@ size_t NearestLookup::KeyHash::operator()(const Key& key) const {
 // 28 bytes a position, and fresh memory for each call cost a page fault
 // every 4 KB (and the clearing of every entry).
 struct NearestLookup::Scratch {
-  struct Sorted {
-    Vec2 position;
-    uint32_t index;  // into the call's positions
-  };
-  std::vector<uint32_t> grid_of;  // the grid of each position
-  std::vector<uint32_t> starts;   // first sorted entry of each grid, then the end
-  std::vector<Sorted> sorted;     // positions by grid; only a prefix is in use
+  std::vector<uint32_t> grid_of;        // the grid of each position
+  std::vector<uint32_t> starts;         // first sorted entry of each grid, then the end
+  std::vector<IndexedPosition> sorted;  // positions by grid; only a prefix is in use
+  std::vector<uint32_t> refused;        // of one grid's entries, those it did not certify
 };
 
 // Scratch kept for reuse: enough for a few concurrent calls of the default
@@ -190,7 +177,7 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
       return OutOfRange("positions[" + std::to_string(k) + "]: " + exact.status().message());
     }
     if (!exact.ok()) return exact.status();
-    results[k] = FromTwoNearest(*exact);
+    results[k] = ToNearestPoint(*exact);
     return Status::Ok();
   };
   if (options_.method == NearestMethod::kBruteForce) {
@@ -216,25 +203,36 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
     for (size_t k = 0; k < positions.size(); ++k) ++starts[grid_of[k] + 1];
     for (size_t g = 0; g < grids.size(); ++g) starts[g + 1] += starts[g];
     if (scratch->sorted.size() < positions.size()) scratch->sorted.resize(positions.size());
-    Scratch::Sorted* sorted = scratch->sorted.data();
+    IndexedPosition* sorted = scratch->sorted.data();
     std::vector<uint32_t> next_vector(starts.begin(), starts.end() - 1);
     uint32_t* next = next_vector.data();
     for (size_t k = 0; k < positions.size(); ++k) {
       sorted[next[grid_of[k]]++] = {positions[k], static_cast<uint32_t>(k)};
     }
-    // The positions of grid g, by whichever search its world's grids take.
-    auto answer_from = [&](const auto& grid, size_t g) -> Status {
+    // The brute force for sorted entry j, which no grid could certify.
+    auto fall_back = [&](uint32_t j) -> Status {
+      ++fallbacks;
+      // A fallback queries the engine, possibly cold: poll before each.
+      if (StopNow(stop)) return StopStatus();
+      return answer_by_brute_force(sorted[j].index, sorted[j].position);
+    };
+    // The positions of grid g: a constant world's in one call (AnswerEach),
+    // a field world's one by one.
+    std::vector<uint32_t>& refused = scratch->refused;
+    auto answer_from = [&](size_t g) -> Status {
+      if (const NearestSearchGrid* grid = grids[g].constant.get()) {
+        refused.clear();
+        grid->AnswerEach({sorted + starts[g], sorted + starts[g + 1]}, results, refused);
+        for (const uint32_t offset : refused) {
+          if (Status status = fall_back(starts[g] + offset); !status.ok()) return status;
+        }
+        return Status::Ok();
+      }
       for (uint32_t j = starts[g]; j < starts[g + 1]; ++j) {
         TwoNearest best;
-        if (grid.FindTwoNearest(sorted[j].position, best)) {
-          results[sorted[j].index] = FromTwoNearest(best);
-          continue;
-        }
-        ++fallbacks;
-        // A fallback queries the engine, possibly cold: poll before each.
-        if (StopNow(stop)) return StopStatus();
-        if (Status status = answer_by_brute_force(sorted[j].index, sorted[j].position);
-            !status.ok()) {
+        if (grids[g].field->FindTwoNearest(sorted[j].position, best)) {
+          results[sorted[j].index] = ToNearestPoint(best);
+        } else if (Status status = fall_back(j); !status.ok()) {
           return status;
         }
       }
@@ -242,9 +240,7 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
     };
     for (size_t g = 0; g < grids.size(); ++g) {
       if (StopNow(stop)) return StopStatus();
-      const Status status =
-          grids[g].field ? answer_from(*grids[g].field, g) : answer_from(*grids[g].constant, g);
-      if (!status.ok()) return status;
+      if (Status status = answer_from(g); !status.ok()) return status;
     }
     ReturnScratch(std::move(scratch));
   }

@@ -107,7 +107,7 @@ struct SmallestKeys {
   using Keys = typename LaneTypes<kLanes>::Keys;
   Keys first, second, third;
 
-  SCALLOP_INLINE SmallestKeys(Keys a, Keys b, Keys c) { Sort(a, b, c); }
+  SCALLOP_INLINE void Start(Keys a, Keys b, Keys c) { Sort(a, b, c); }
 
   SCALLOP_INLINE void Offer(Keys keys) {
     const Keys high1 = Max(first, keys);
@@ -228,83 +228,194 @@ void NearestSearchGrid::ScanRow(int row, int first, int last, const Vec2& p,
   }
 }
 
-template <int kLanes>
-SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy,
-                                                          double radius1, TwoNearest& best) const {
+template <int kLanes, int kPositions>
+SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery* queries) const {
   using Keys = typename LaneTypes<kLanes>::Keys;
   static_assert(kRunPoints % kLanes == 0);
-  // Examines every point of p's 3x3 block, and some beyond it (later cells
-  // of a row, the far pads, possibly a point twice): extra points are real,
-  // or farther than any block reaches, so they cannot make a wrong answer
-  // look right.
-  const Keys px = Broadcast<kLanes>(p.x), py = Broadcast<kLanes>(p.y);
+  // Examines every point of each position's 3x3 block, and some beyond it
+  // (later cells of a row, the far pads, possibly a point twice): extra
+  // points are real, or farther than any block reaches, so they cannot make
+  // a wrong answer look right. Each step runs for every position before the
+  // next step: the positions' chains of dependent loads and compares are
+  // independent, and side by side the CPU overlaps them.
   const double* const xs = xs_.data();
   const double* const ys = ys_.data();
-  uint32_t first[3], end[3];
-  for (int r = 0; r < 3; ++r) {
-    const int row = cy - 1 + r;
-    first[r] = cell_start_[row * kSide + cx - 1];
-    end[r] = cell_start_[row * kSide + cx + 2];
+  Keys px[kPositions], py[kPositions];
+  uint32_t first[kPositions][3], end[kPositions][3];
+  for (int q = 0; q < kPositions; ++q) {
+    px[q] = Broadcast<kLanes>(queries[q].p->x);
+    py[q] = Broadcast<kLanes>(queries[q].p->y);
+    for (int r = 0; r < 3; ++r) {
+      const int row = queries[q].cy - 1 + r;
+      first[q][r] = cell_start_[row * kSide + queries[q].cx - 1];
+      end[q][r] = cell_start_[row * kSide + queries[q].cx + 2];
+    }
   }
   constexpr int kVectors = 3 * kRunPoints / kLanes;  // for the runs' first kRunPoints
   static_assert(kVectors >= 3);
-  Keys fixed[kVectors];
-  for (int v = 0; v < kVectors; ++v) {
-    fixed[v] =
-        KeysOf<kLanes>(xs, ys, px, py, first[v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
+  SmallestKeys<kLanes> keys[kPositions];
+  for (int q = 0; q < kPositions; ++q) {
+    Keys fixed[kVectors];
+    for (int v = 0; v < kVectors; ++v) {
+      fixed[v] = KeysOf<kLanes>(xs, ys, px[q], py[q],
+                                first[q][v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
+    }
+    keys[q].Start(fixed[0], fixed[1], fixed[2]);
+    for (int v = 3; v < kVectors; ++v) keys[q].Offer(fixed[v]);
   }
-  SmallestKeys<kLanes> keys(fixed[0], fixed[1], fixed[2]);
-  for (int v = 3; v < kVectors; ++v) keys.Offer(fixed[v]);
-  // Longer runs are rare (1% of rows): one branch for the three.
-  if ((end[0] - first[0] > kRunPoints) | (end[1] - first[1] > kRunPoints) |
-      (end[2] - first[2] > kRunPoints)) [[unlikely]] {
-    for (int r = 0; r < 3; ++r) {
-      for (uint32_t k = first[r] + kRunPoints; k < end[r]; k += kLanes)
-        keys.Offer(KeysOf<kLanes>(xs, ys, px, py, k));
+  // Longer runs are rare (1% of rows): one branch for them all.
+  bool long_run = false;
+  for (int q = 0; q < kPositions; ++q) {
+    for (int r = 0; r < 3; ++r) long_run |= end[q][r] - first[q][r] > kRunPoints;
+  }
+  if (long_run) [[unlikely]] {
+    for (int q = 0; q < kPositions; ++q) {
+      for (int r = 0; r < 3; ++r) {
+        for (uint32_t k = first[q][r] + kRunPoints; k < end[q][r]; k += kLanes)
+          keys[q].Offer(KeysOf<kLanes>(xs, ys, px[q], py[q], k));
+      }
     }
   }
-  keys.MergeAllLanes();
-  // Distinct truncated distances: the first key's point is strictly nearer
-  // than every other point examined, and the second's strictly second (a
-  // point examined twice would tie with itself). Ties by id cannot arise, so
-  // the exact order by (squared, id) is this one. Otherwise (ties, or
-  // distances equal to 2^-36), the exact scan decides.
-  const auto key1 = std::bit_cast<uint64_t>(keys.first[0]);
-  const auto key2 = std::bit_cast<uint64_t>(keys.second[0]);
-  const auto key3 = std::bit_cast<uint64_t>(keys.third[0]);
-  if ((key1 >> kIndexBits) == (key2 >> kIndexBits) ||
-      (key2 >> kIndexBits) == (key3 >> kIndexBits)) {
-    return false;
+  unsigned certified = 0;
+  for (int q = 0; q < kPositions; ++q) {
+    keys[q].MergeAllLanes();
+    // Distinct truncated distances: the first key's point is strictly nearer
+    // than every other point examined, and the second's strictly second (a
+    // point examined twice would tie with itself). Ties by id cannot arise,
+    // so the exact order by (squared, id) is this one. Otherwise (ties, or
+    // distances equal to 2^-36), the exact scan decides.
+    const auto key1 = std::bit_cast<uint64_t>(keys[q].first[0]);
+    const auto key2 = std::bit_cast<uint64_t>(keys[q].second[0]);
+    const auto key3 = std::bit_cast<uint64_t>(keys[q].third[0]);
+    const bool distinct = ((key1 >> kIndexBits) != (key2 >> kIndexBits)) &
+                          ((key2 >> kIndexBits) != (key3 >> kIndexBits));
+    // Every index is a point's or a pad's, so the reads below are in bounds
+    // whether or not the answer stands: no branch until the caller's.
+    const auto i1 = static_cast<uint32_t>(key1 & kIndexMask);
+    const auto i2 = static_cast<uint32_t>(key2 & kIndexMask);
+    const Vec2& p = *queries[q].p;
+    TwoNearest& best = *queries[q].best;
+    best.squared1 = SquaredDistanceFrom(p, Point(i1));
+    best.squared2 = SquaredDistanceFrom(p, Point(i2));
+    const double radius1 = queries[q].radius1;
+    // Else phase 2 is needed (or a pad is among the two).
+    const bool within = best.squared2 <= radius1 * radius1;
+    best.id1 = ids_[i1];
+    best.id2 = ids_[i2];
+    // Each point as one 16-byte store: the caller reads it so, and one built
+    // from two 8-byte stores would stall that read (no store forwarding).
+    const Pair point1 = {xs_[i1], ys_[i1]}, point2 = {xs_[i2], ys_[i2]};
+    best.point1 = std::bit_cast<Vec2>(point1);
+    best.point2 = std::bit_cast<Vec2>(point2);
+    certified |= static_cast<unsigned>(distinct & within) << q;
   }
-  const auto i1 = static_cast<uint32_t>(key1 & kIndexMask);
-  const auto i2 = static_cast<uint32_t>(key2 & kIndexMask);
-  best.squared1 = SquaredDistanceFrom(p, Point(i1));
-  best.squared2 = SquaredDistanceFrom(p, Point(i2));
-  if (!(best.squared2 <= radius1 * radius1)) return false;  // phase 2 needed (or a pad)
-  best.id1 = ids_[i1];
-  best.id2 = ids_[i2];
-  // Each point as one 16-byte store: the caller reads it so, and one built
-  // from two 8-byte stores would stall that read (no store forwarding).
-  const Pair point1 = {xs_[i1], ys_[i1]}, point2 = {xs_[i2], ys_[i2]};
-  best.point1 = std::bit_cast<Vec2>(point1);
-  best.point2 = std::bit_cast<Vec2>(point2);
-  return true;
+  return certified;
 }
 
 bool NearestSearchGrid::FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1,
                                               TwoNearest& best) const {
-  return FindInBlockQuickly<2>(p, cx, cy, radius1, best);
+  const BlockQuery query{&p, cx, cy, radius1, &best};
+  return FindInBlocksQuickly<2, 1>(&query) != 0;
+}
+
+template <int kLanes>
+SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosition> positions,
+                                                    NearestPoint* results,
+                                                    std::vector<uint32_t>& refused) const {
+  const auto count = static_cast<uint32_t>(positions.size());
+  uint32_t k = 0;
+  for (; k + 2 <= count; k += 2) {
+    const IndexedPosition& entry0 = positions[k];
+    const IndexedPosition& entry1 = positions[k + 1];
+    const auto [gx0, gy0] = CellCoordinates(entry0.position);
+    const auto [gx1, gy1] = CellCoordinates(entry1.position);
+    if (!(quick_ && BlockInGrid(gx0, gy0) && BlockInGrid(gx1, gy1))) [[unlikely]] {
+      AnswerAlone(entry0, k, results, refused);
+      AnswerAlone(entry1, k + 1, results, refused);
+      continue;
+    }
+    const int cx0 = static_cast<int>(gx0), cy0 = static_cast<int>(gy0);  // floor: all >= 1
+    const int cx1 = static_cast<int>(gx1), cy1 = static_cast<int>(gy1);
+    TwoNearest best[2];
+    const BlockQuery queries[2] = {
+        {&entry0.position, cx0, cy0, Covered(gx0, gy0, cx0 - 1, cx0 + 1, cy0 - 1, cy0 + 1),
+         &best[0]},
+        {&entry1.position, cx1, cy1, Covered(gx1, gy1, cx1 - 1, cx1 + 1, cy1 - 1, cy1 + 1),
+         &best[1]}};
+    const unsigned certified = FindInBlocksQuickly<kLanes, 2>(queries);
+    if (certified & 1u) {
+      results[entry0.index] = ToNearestPoint(best[0]);
+    } else {
+      AnswerExactly(entry0, k, results, refused);
+    }
+    if (certified & 2u) {
+      results[entry1.index] = ToNearestPoint(best[1]);
+    } else {
+      AnswerExactly(entry1, k + 1, results, refused);
+    }
+  }
+  if (k < count) AnswerAlone(positions[k], k, results, refused);
+}
+
+void NearestSearchGrid::AnswerEach(std::span<const IndexedPosition> positions,
+                                   std::span<NearestPoint> results,
+                                   std::vector<uint32_t>& refused) const {
+  if (four_lanes_) {
+    AnswerEachInFourLanes(positions, results.data(), refused);
+  } else {
+    AnswerEachInTwoLanes(positions, results.data(), refused);
+  }
+}
+
+void NearestSearchGrid::AnswerAlone(const IndexedPosition& entry, uint32_t offset,
+                                    NearestPoint* results, std::vector<uint32_t>& refused) const {
+  TwoNearest best;
+  if (FindTwoNearest(entry.position, best)) {
+    results[entry.index] = ToNearestPoint(best);
+  } else {
+    refused.push_back(offset);
+  }
+}
+
+void NearestSearchGrid::AnswerExactly(const IndexedPosition& entry, uint32_t offset,
+                                      NearestPoint* results, std::vector<uint32_t>& refused) const {
+  const auto [gx, gy] = CellCoordinates(entry.position);
+  TwoNearest best;
+  if (FindTwoNearestExactly(entry.position, gx, gy, best)) {
+    results[entry.index] = ToNearestPoint(best);
+  } else {
+    refused.push_back(offset);
+  }
+}
+
+void NearestSearchGrid::AnswerEachInTwoLanes(std::span<const IndexedPosition> positions,
+                                             NearestPoint* results,
+                                             std::vector<uint32_t>& refused) const {
+  AnswerEachIn<2>(positions, results, refused);
 }
 
 #if defined(__x86_64__) || defined(__i386__)
 __attribute__((target("avx2"))) bool NearestSearchGrid::FindInBlockInFourLanes(
     const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const {
-  return FindInBlockQuickly<4>(p, cx, cy, radius1, best);
+  const BlockQuery query{&p, cx, cy, radius1, &best};
+  return FindInBlocksQuickly<4, 1>(&query) != 0;
+}
+
+__attribute__((target("avx2"))) void NearestSearchGrid::AnswerEachInFourLanes(
+    std::span<const IndexedPosition> positions, NearestPoint* results,
+    std::vector<uint32_t>& refused) const {
+  AnswerEachIn<4>(positions, results, refused);
 }
 #else
 bool NearestSearchGrid::FindInBlockInFourLanes(const Vec2& p, int cx, int cy, double radius1,
                                                TwoNearest& best) const {
-  return FindInBlockQuickly<2>(p, cx, cy, radius1, best);
+  return FindInBlockInTwoLanes(p, cx, cy, radius1, best);
+}
+
+void NearestSearchGrid::AnswerEachInFourLanes(std::span<const IndexedPosition> positions,
+                                              NearestPoint* results,
+                                              std::vector<uint32_t>& refused) const {
+  AnswerEachInTwoLanes(positions, results, refused);
 }
 #endif
 
