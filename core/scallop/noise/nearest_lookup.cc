@@ -73,6 +73,9 @@ size_t CallSlotOf(RegionKey key, size_t slot_count) {
 // query, so a stop waits for at most this many of them.
 constexpr size_t kAnswersPerStopPoll = 64;
 
+// ValidatePosition's test, inline: the call only to name a bad position.
+bool InRange(Vec2 p, double limit) { return std::abs(p.x) <= limit && std::abs(p.y) <= limit; }
+
 Status StopStatus() {
   return Cancelled("nearest: stopped by the caller (cancelled or past deadline)");
 }
@@ -128,7 +131,7 @@ void NearestLookup::ReturnScratch(std::unique_ptr<Scratch> scratch) {
 Status NearestLookup::ValidatePosition(const World& world, Vec2 position, size_t index) {
   const double limit = RegionLayout(world).precision_limit();
   // The message is built only on failure: this runs once per position.
-  if (std::abs(position.x) <= limit && std::abs(position.y) <= limit) return Status::Ok();
+  if (InRange(position, limit)) return Status::Ok();
   const std::pair<char, double> coordinates[] = {{'x', position.x}, {'y', position.y}};
   for (const auto& [axis, value] : coordinates) {
     const std::string field = "positions[" + std::to_string(index) + "]." + axis;
@@ -161,14 +164,6 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
         "world.layers: the noise basis is a layer's; ask for one layer (its world, "
         "WorldLayers::world)");
   }
-  // ValidatePosition's test inline; the call only to name a bad position.
-  const double limit = RegionLayout(world).precision_limit();
-  for (size_t k = 0; k < positions.size(); ++k) {
-    const Vec2 p = positions[k];
-    if (!(std::abs(p.x) <= limit && std::abs(p.y) <= limit)) {
-      return ValidatePosition(world, p, k);
-    }
-  }
   int64_t fallbacks = 0;
   // The exact answer at p from the engine's points, when no grid certifies one.
   auto answer_by_brute_force = [&](size_t k, Vec2 p) -> Status {
@@ -181,6 +176,10 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
     return Status::Ok();
   };
   if (options_.method == NearestMethod::kBruteForce) {
+    const double limit = RegionLayout(world).precision_limit();
+    for (size_t k = 0; k < positions.size(); ++k) {
+      if (!InRange(positions[k], limit)) return ValidatePosition(world, positions[k], k);
+    }
     for (size_t k = 0; k < positions.size(); ++k) {
       if (k % kAnswersPerStopPoll == 0 && StopNow(stop)) return StopStatus();
       if (Status status = answer_by_brute_force(k, positions[k]); !status.ok()) return status;
@@ -188,7 +187,8 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
   } else {
     std::unique_ptr<Scratch> scratch = TakeScratch();
     std::vector<GridHandle> grids;
-    if (Status status = AssignGrids(world, positions, grids, scratch->grid_of, stop);
+    std::vector<uint32_t>& starts = scratch->starts;
+    if (Status status = AssignGrids(world, positions, grids, scratch->grid_of, starts, stop);
         !status.ok()) {
       return status;
     }
@@ -198,16 +198,17 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
     // permutation would miss the cache on every one.
     // (Plain pointers: through the vectors GCC reloaded them on every entry.)
     const uint32_t* grid_of = scratch->grid_of.data();
-    std::vector<uint32_t>& starts = scratch->starts;
-    starts.assign(grids.size() + 1, 0);
-    for (size_t k = 0; k < positions.size(); ++k) ++starts[grid_of[k] + 1];
     for (size_t g = 0; g < grids.size(); ++g) starts[g + 1] += starts[g];
     if (scratch->sorted.size() < positions.size()) scratch->sorted.resize(positions.size());
     IndexedPosition* sorted = scratch->sorted.data();
     std::vector<uint32_t> next_vector(starts.begin(), starts.end() - 1);
     uint32_t* next = next_vector.data();
     for (size_t k = 0; k < positions.size(); ++k) {
-      sorted[next[grid_of[k]]++] = {positions[k], static_cast<uint32_t>(k)};
+      // Field by field: as one aggregate GCC 12 passed it through the stack,
+      // and reloading the index from there cost more than the rest of the loop.
+      IndexedPosition& entry = sorted[next[grid_of[k]]++];
+      entry.position = positions[k];
+      entry.index = static_cast<uint32_t>(k);
     }
     // The brute force for sorted entry j, which no grid could certify.
     auto fall_back = [&](uint32_t j) -> Status {
@@ -252,8 +253,10 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
 
 Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> positions,
                                   std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of,
-                                  const StopRequested& stop) {
+                                  std::vector<uint32_t>& counts, const StopRequested& stop) {
   const RegionLayout layout(world);
+  const double limit = layout.precision_limit();
+  counts.assign(1, 0);
   const double inverse_side = 1.0 / layout.side();
   const int64_t regions_per_half_axis = layout.regions_per_half_axis();
   struct CallSlot {
@@ -287,6 +290,7 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
       if (!grid.ok()) return grid.status();
       *slot = {key, static_cast<uint32_t>(grids.size()), true};
       grids.push_back(std::move(*grid));
+      counts.push_back(0);
     }
     index = slot->grid;
     return Status::Ok();
@@ -296,7 +300,10 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
   // region.
   RegionKey current_key;
   uint32_t current = 0;
+  uint32_t* counted = counts.data() + 1;  // moved when a grid is added
   for (size_t k = 0; k < positions.size(); ++k) {
+    // Validation here, not in a pass of its own: one read of the positions.
+    if (!InRange(positions[k], limit)) return ValidatePosition(world, positions[k], k);
     const RegionKey key = ApproximateRegionOf(positions[k], inverse_side, regions_per_half_axis);
     if (k == 0 || key != current_key) {
       current_key = key;
@@ -310,9 +317,11 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
       } else {
         if (Status status = grid_by_slot(key, current); !status.ok()) return status;
         if (in_window != nullptr) *in_window = current;
+        counted = counts.data() + 1;
       }
     }
     grid_of[k] = current;
+    ++counted[current];
   }
   return Status::Ok();
 }

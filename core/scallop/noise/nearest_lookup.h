@@ -120,10 +120,12 @@ class NearestLookup {
   void ReturnScratch(std::unique_ptr<Scratch> scratch);
 
   // The grid each position is answered by: grids[grid_of[k]] for position k
-  // (grid_of may be longer than positions; the rest is unspecified).
+  // (grid_of may be longer than positions; the rest is unspecified), and
+  // counts[g + 1] positions for grid g (counts[0] = 0). Validates each
+  // position before its grid is fetched (ValidatePosition's errors).
   Status AssignGrids(const World& world, std::span<const Vec2> positions,
                      std::vector<GridHandle>& grids, std::vector<uint32_t>& grid_of,
-                     const StopRequested& stop);
+                     std::vector<uint32_t>& counts, const StopRequested& stop);
   // The grid of `region`, from the cache or built (outside the mutex: two
   // threads may build the same grid at once, and both get identical grids).
   StatusOr<GridHandle> Grid(const World& world, RegionKey region);
