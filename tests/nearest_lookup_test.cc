@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <thread>
@@ -102,6 +103,61 @@ TEST(NearestLookupTest, SeamsCornersAndPointsMatchBruteForce) {
     EXPECT_EQ(results[0].f1, 0.0);
     EXPECT_EQ(results[0].id, points->ids[3]);
   }
+}
+
+// Batches of 1,024 positions or more find their grids through a dense
+// window of regions about the first position (docs/noise.md, "Batches"):
+// positions exactly on seams and an ulp either side, random ones, ones
+// beyond the window, and a window about a corner of the precision range,
+// part of it beyond the range. Grouped pairs of positions (AnswerEach) see
+// every kind side by side.
+TEST(NearestLookupTest, LargeBatchesThroughTheWindowMatchBruteForce) {
+  PlaneEngine engine({.threads = 1});
+  NearestLookup lookup(engine);
+  const double d = 1.0;
+  const World world = WorldFor(WorldAlgorithm::kA3, 13, d);
+  const RegionLayout layout(d);
+  const double limit = layout.precision_limit();
+  for (const Vec2 centre : {Vec2{40, -30}, Vec2{limit - 5 * d, -limit + 5 * d}}) {
+    SCOPED_TRACE(::testing::Message() << "window about " << centre.x << ", " << centre.y);
+    Rng rng(HashWords({13, static_cast<uint64_t>(centre.x)}));
+    std::vector<Vec2> positions = {centre};
+    const RegionKey home = layout.RegionOf(centre.x, centre.y);
+    while (positions.size() < 1400) {
+      const Rect edges = layout.RegionRect({home.i + static_cast<int64_t>(rng.Below(5)) - 2,
+                                            home.j + static_cast<int64_t>(rng.Below(5)) - 2});
+      const double along = rng.Uniform(edges.y0, edges.y1);
+      double edge = positions.size() % 2 ? edges.x0 : edges.x1;
+      if (positions.size() % 3 == 1) edge = std::nextafter(edge, -1e300);
+      if (positions.size() % 3 == 2) edge = std::nextafter(edge, 1e300);
+      const Vec2 on_seam = positions.size() % 4 < 2 ? Vec2{edge, along} : Vec2{along, edge};
+      positions.push_back(
+          {std::clamp(on_seam.x, -limit, limit), std::clamp(on_seam.y, -limit, limit)});
+      positions.push_back({std::clamp(centre.x + rng.Uniform(-60, 60), -limit, limit),
+                           std::clamp(centre.y + rng.Uniform(-60, 60), -limit, limit)});
+      if (rng.Below(8) == 0) {  // beyond the window's 64 x 64 regions, when that is in range
+        const double far = centre.x > 0 ? -2000 : 2000;
+        positions.push_back({centre.x + far + rng.Uniform(-40, 40),
+                             std::clamp(centre.y + rng.Uniform(-40, 40), -limit, limit)});
+      }
+    }
+    positions.push_back({limit, -limit});  // on the range's corner
+    std::vector<NearestPoint> results(positions.size());
+    const Status status = lookup.Nearest(world, positions, results);
+    ASSERT_TRUE(status.ok()) << status.message();
+    int mismatches = 0, rotated_mismatches = 0;
+    for (size_t k = 0; k < positions.size(); ++k) {
+      const NearestPoint truth = OracleNearest(engine, world, positions[k]);
+      if (!SameNearest(truth, results[k]) && ++mismatches <= 3) {
+        ADD_FAILURE() << std::hexfloat << "at (" << positions[k].x << ", " << positions[k].y << ")";
+      }
+      // Planted fault: each answer in its neighbour's slot must be seen.
+      if (!SameNearest(truth, results[(k + 1) % results.size()])) ++rotated_mismatches;
+    }
+    EXPECT_EQ(mismatches, 0);
+    EXPECT_GT(rotated_mismatches, static_cast<int>(positions.size()) * 9 / 10);
+  }
+  EXPECT_EQ(lookup.Stats().fallbacks, 0);
 }
 
 TEST(NearestLookupTest, FarFromTheOriginAndOnThePrecisionLimit) {

@@ -301,10 +301,30 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
   RegionKey current_key;
   uint32_t current = 0;
   uint32_t* counted = counts.data() + 1;  // moved when a grid is added
+  const double window_x = static_cast<double>(window_low.i);
+  const double window_y = static_cast<double>(window_low.j);
   for (size_t k = 0; k < positions.size(); ++k) {
+    const Vec2 p = positions[k];
     // Validation here, not in a pass of its own: one read of the positions.
-    if (!InRange(positions[k], limit)) return ValidatePosition(world, positions[k], k);
-    const RegionKey key = ApproximateRegionOf(positions[k], inverse_side, regions_per_half_axis);
+    if (!InRange(p, limit)) return ValidatePosition(world, p, k);
+    // A region of the window met before: its grid from one multiply and
+    // subtract an axis and a load, without the region's key (clamping and
+    // the comparison with the current region cost more than that). Rounding
+    // may put a position within an ulp of a seam into the neighbouring
+    // cell, harmless as above.
+    if (!window.empty()) {
+      const double wx = p.x * inverse_side - window_x, wy = p.y * inverse_side - window_y;
+      if (wx >= 0 && wx < kWindowSide && wy >= 0 && wy < kWindowSide) {
+        const uint32_t known =
+            window[static_cast<size_t>(wy) * kWindowSide + static_cast<size_t>(wx)];
+        if (known != kNoGrid) {
+          grid_of[k] = known;
+          ++counted[known];
+          continue;
+        }
+      }
+    }
+    const RegionKey key = ApproximateRegionOf(p, inverse_side, regions_per_half_axis);
     if (k == 0 || key != current_key) {
       current_key = key;
       const auto wi = static_cast<uint64_t>(key.i - window_low.i);

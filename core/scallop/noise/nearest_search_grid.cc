@@ -242,6 +242,8 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery*
   const double* const ys = ys_.data();
   Keys px[kPositions], py[kPositions];
   uint32_t first[kPositions][3], end[kPositions][3];
+  // Longer runs are rare (1% of rows): one branch for them all.
+  bool long_run = false;
   for (int q = 0; q < kPositions; ++q) {
     px[q] = Broadcast<kLanes>(queries[q].p->x);
     py[q] = Broadcast<kLanes>(queries[q].p->y);
@@ -249,7 +251,13 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery*
       const int row = queries[q].cy - 1 + r;
       first[q][r] = cell_start_[row * kSide + queries[q].cx - 1];
       end[q][r] = cell_start_[row * kSide + queries[q].cx + 2];
+      long_run |= end[q][r] - first[q][r] > kRunPoints;
     }
+  }
+  // Several positions at once leave them to the one-position pass: its loop
+  // here kept every position's keys in memory, not registers.
+  if constexpr (kPositions > 1) {
+    if (long_run) [[unlikely]] return kAnswerEachAlone;
   }
   constexpr int kVectors = 3 * kRunPoints / kLanes;  // for the runs' first kRunPoints
   static_assert(kVectors >= 3);
@@ -262,11 +270,6 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery*
     }
     keys[q].Start(fixed[0], fixed[1], fixed[2]);
     for (int v = 3; v < kVectors; ++v) keys[q].Offer(fixed[v]);
-  }
-  // Longer runs are rare (1% of rows): one branch for them all.
-  bool long_run = false;
-  for (int q = 0; q < kPositions; ++q) {
-    for (int r = 0; r < 3; ++r) long_run |= end[q][r] - first[q][r] > kRunPoints;
   }
   if (long_run) [[unlikely]] {
     for (int q = 0; q < kPositions; ++q) {
@@ -343,6 +346,11 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosit
         {&entry1.position, cx1, cy1, Covered(gx1, gy1, cx1 - 1, cx1 + 1, cy1 - 1, cy1 + 1),
          &best[1]}};
     const unsigned certified = FindInBlocksQuickly<kLanes, 2>(queries);
+    if (certified == kAnswerEachAlone) [[unlikely]] {
+      AnswerAlone(entry0, k, results, refused);
+      AnswerAlone(entry1, k + 1, results, refused);
+      continue;
+    }
     if (certified & 1u) {
       results[entry0.index] = ToNearestPoint(best[0]);
     } else {

@@ -152,7 +152,10 @@ class NearestSearchGrid {
     double radius1;
     TwoNearest* best;
   };
-  // Bit q of the result: queries[q] is certified (kPositions of them side by side).
+  // Bit q of the result: queries[q] is certified (kPositions of them side by
+  // side); or, for several, kAnswerEachAlone: a row of a block is longer than
+  // the pass reads, so each position wants the one-position pass.
+  static constexpr unsigned kAnswerEachAlone = 1u << 31;
   template <int kLanes, int kPositions>
   unsigned FindInBlocksQuickly(const BlockQuery* queries) const;
   bool FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
