@@ -301,6 +301,9 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
   RegionKey current_key;
   uint32_t current = 0;
   uint32_t* counted = counts.data() + 1;  // moved when a grid is added
+  // Plain pointers: through the vectors GCC reloaded them for every position.
+  const uint32_t* const window_cells = window.empty() ? nullptr : window.data();
+  uint32_t* const grid_of_data = grid_of.data();
   const double window_x = static_cast<double>(window_low.i);
   const double window_y = static_cast<double>(window_low.j);
   for (size_t k = 0; k < positions.size(); ++k) {
@@ -312,13 +315,14 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
     // the comparison with the current region cost more than that). Rounding
     // may put a position within an ulp of a seam into the neighbouring
     // cell, harmless as above.
-    if (!window.empty()) {
+    if (window_cells != nullptr) {
       const double wx = p.x * inverse_side - window_x, wy = p.y * inverse_side - window_y;
       if (wx >= 0 && wx < kWindowSide && wy >= 0 && wy < kWindowSide) {
+        // Through int: a conversion to an unsigned type costs a test of 2^63.
         const uint32_t known =
-            window[static_cast<size_t>(wy) * kWindowSide + static_cast<size_t>(wx)];
+            window_cells[static_cast<int>(wy) * kWindowSide + static_cast<int>(wx)];
         if (known != kNoGrid) {
-          grid_of[k] = known;
+          grid_of_data[k] = known;
           ++counted[known];
           continue;
         }
@@ -340,7 +344,7 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
         counted = counts.data() + 1;
       }
     }
-    grid_of[k] = current;
+    grid_of_data[k] = current;
     ++counted[current];
   }
   return Status::Ok();
