@@ -58,8 +58,9 @@ class NearestLookup {
   // Rejects: INVALID_ARGUMENT for a
   // non-finite coordinate; OUT_OF_RANGE for |x| or |y| > 2^32 d; errors name
   // the position, e.g. "positions[3].x".
-  // Cost, warm: about 50 ns of CPU a position on this project's shared
-  // machine (47-58 ns, image to random order, docs/performance.md), plus a
+  // Cost, warm: about 40 ns of CPU a position on this project's shared
+  // Intel Xeon (42 ns median, 40 ns best, random or image order,
+  // docs/performance.md; slower on AMD Zen 3, docs/noise.md), plus a
   // mutex and a hash lookup per region a batch visits. A missing grid costs
   // one PlaneEngine::Points query of 24 d x 24 d, plus generation when cold.
   // Memory: about 28 bytes a position besides `results`, to group by region;
