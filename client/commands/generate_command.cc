@@ -1,6 +1,8 @@
 // `scallop generate`: runs one bounded-domain sampler locally and prints its
 // points, with optional statistics on stderr. With a radius field (--radius-noise,
 // --radius-raster) the sampler is the field sampler (SampleField), and each point carries R.
+// With layers (--layer, --exclusion) every layer is sampled on the domain (SampleLayers), and
+// each point carries its layer.
 #include <chrono>
 #include <iomanip>
 #include <iostream>
@@ -10,11 +12,14 @@
 #include "client/commands/commands.h"
 #include "client/options/field_options.h"
 #include "client/options/format_options.h"
+#include "client/options/layer_options.h"
 #include "client/options/rect_option.h"
 #include "client/options/world_options.h"
 #include "client/output/point_output.h"
 #include "scallop/analysis/point_statistics.h"
+#include "scallop/plane/world_layers.h"
 #include "scallop/sampling/field_sampler.h"
+#include "scallop/sampling/layered_sampler.h"
 #include "scallop/sampling/sampler.h"
 
 namespace scallop::cli {
@@ -32,6 +37,7 @@ struct GenerateArguments {
   int64_t dart_failure_limit = 100000;
   bool dart_exhaustive = false;
   FieldArguments field;
+  LayerArguments layers;
 };
 
 // The field sampler's run: A3's growth with the field's spacing, then a certified sweep. Only
@@ -64,6 +70,52 @@ int RunGenerateField(const GenerateArguments& arguments, const RadiusFieldSpec& 
   return 0;
 }
 
+// The layered run: the layers (and their seeds, generation order and exclusion matrix) are a
+// layered world's, sampled on the domain alone rather than queried from the plane. Only
+// rectangles, and only a3, by which every layer after the first grows.
+int RunGenerateLayers(const GenerateArguments& arguments, const Rect& domain, uint64_t seed) {
+  if (arguments.algorithm != "a3") {
+    return ReportBadArguments("generate",
+                              InvalidArgument("--algorithm: layers are sampled by a3 only, got '" +
+                                              arguments.algorithm + "'"));
+  }
+  if (arguments.torus) {
+    return ReportBadArguments("generate",
+                              InvalidArgument("--torus: layers sample rectangles only"));
+  }
+  StatusOr<std::vector<LayerSpec>> layers = ParseLayers(arguments.layers);
+  if (!layers.ok()) return ReportBadArguments("generate", layers.status());
+  StatusOr<std::vector<LayerExclusionSpec>> exclusions = ParseExclusions(arguments.layers);
+  if (!exclusions.ok()) return ReportBadArguments("generate", exclusions.status());
+  StatusOr<World> world = World::Create(
+      {.seed = seed, .layers = std::move(*layers), .exclusions = std::move(*exclusions)});
+  if (!world.ok()) return ReportBadArguments("generate", world.status());
+  StatusOr<LayerMask> shown = ParseLayerFilter(arguments.layers, *world);
+  if (!shown.ok()) return ReportBadArguments("generate", shown.status());
+  const auto start = std::chrono::steady_clock::now();
+  StatusOr<LayeredPoints> sampled = SampleLayers(BoundedLayersOn(*world->layers(), domain));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!sampled.ok()) return ReportBadArguments("generate", sampled.status());
+  LayeredPoints printed;
+  for (size_t k = 0; k < sampled->positions.size(); ++k) {
+    if ((*shown >> sampled->layers[k] & 1) == 0) continue;
+    printed.positions.push_back(sampled->positions[k]);
+    printed.layers.push_back(sampled->layers[k]);
+  }
+  const std::vector<std::string> names = LayerNames(*world);
+  WritePoints(std::cout, arguments.format, printed.positions, {},
+              LayerRadiiAt(*world, printed.positions, printed.layers,
+                           arguments.format == PointFormat::kSvg),
+              domain, {}, {.of = printed.layers, .names = names});
+  if (arguments.stats) {
+    std::cerr << std::setprecision(6) << "algorithm a3\nlayers " << names.size() << "\ncount "
+              << sampled->positions.size() << "\nseconds " << seconds << "\npoints_per_second "
+              << static_cast<double>(sampled->positions.size()) / seconds << '\n';
+  }
+  return 0;
+}
+
 int RunGenerate(const GenerateArguments& arguments) {
   SamplerOptions options;
   auto algorithm = ParseAlgorithm(arguments.algorithm);
@@ -80,6 +132,10 @@ int RunGenerate(const GenerateArguments& arguments) {
   StatusOr<std::optional<RadiusFieldSpec>> field = ParseLocalField(arguments.field);
   if (!field.ok()) return ReportBadArguments("generate", field.status());
   if (field->has_value()) return RunGenerateField(arguments, **field, *domain, *seed);
+  if (HasLayers(arguments.layers)) return RunGenerateLayers(arguments, *domain, *seed);
+  if (!arguments.layers.filter.empty()) {
+    return ReportBadArguments("generate", InvalidArgument("--layers: needs --layer"));
+  }
   options.dart_failure_limit = arguments.dart_failure_limit;
   options.dart_exhaustive = arguments.dart_exhaustive;
 
@@ -133,6 +189,7 @@ CommandRunner RegisterGenerate(CLI::App& app) {
   command->add_flag("--dart-exhaustive", arguments->dart_exhaustive,
                     "dart: run until no spot is left (maximal)");
   AddFieldOptions(*command, arguments->field);
+  AddLayerOptions(*command, arguments->layers);
   return [arguments] { return RunGenerate(*arguments); };
 }
 
