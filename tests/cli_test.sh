@@ -395,9 +395,23 @@ check "generate --layers: the unfiltered rows of that layer" \
 expect_exit 0 generate "${forest[@]}" --layer ferns=noise:1,2,0.02 --domain 0,0,20,20
 check "generate field layer: CSV header is x,y,layer,r" test "$(head -n 1 "$work/out")" = "x,y,layer,r"
 expect_bad_argument "--algorithm: layers are sampled by a3 only" generate "${forest[@]}" --algorithm a2
-expect_bad_argument "--torus: layers sample rectangles only" generate "${forest[@]}" --torus
+expect_bad_argument "--torus: layers are sampled on rectangles only" generate "${forest[@]}" --torus
 expect_bad_argument "--layers: needs --layer" generate --layers rocks
 expect_bad_argument "world.layers[1].name" generate --layer trees=8 --layer trees=3
+# generate --world-file: the file's world sampled on the domain alone, as its flags give it.
+printf 'seed: 7\nlayers:\n  - {name: trees, min_distance: 8}\n  - {name: bushes, min_distance: 3}\n  - {name: rocks, min_distance: 1.5}\n' \
+  >"$work/bounded-forest.yaml"
+expect_exit 0 generate --world-file "$work/bounded-forest.yaml" --domain 0,0,30,30
+check "generate --world-file, layered: the flags' points" cmp -s "$work/out" "$work/bounded-forest.csv"
+printf 'seed: 9\nmin_distance: 2\nalgorithm: a2\ndensity: 1.5\n' >"$work/plain.yaml"
+expect_exit 0 generate --world-file "$work/plain.yaml" --domain 0,0,30,30
+cp "$work/out" "$work/plain-file.csv"
+expect_exit 0 generate --seed 9 --min-distance 2 --algorithm a2 --density 1.5 --domain 0,0,30,30
+check "generate --world-file, plain: the flags' points" cmp -s "$work/out" "$work/plain-file.csv"
+expect_bad_argument "--torus: --world-file" generate --world-file "$work/bounded-forest.yaml" \
+  --domain 0,0,30,30 --torus
+expect_bad_argument "--layers: --world-file" generate --world-file "$work/plain.yaml" --layers a
+expect_exit 2 generate --world-file "$work/plain.yaml" --seed 3
 expect_exit 0 plane "${forest[@]}" --layer ferns=noise:1,2,0.02 --rect -10,-10,10,10
 check "plane field layer: CSV header is id,x,y,layer,r" \
   test "$(head -n 1 "$work/out")" = "id,x,y,layer,r"
