@@ -195,7 +195,8 @@ int RunGenerate(const GenerateArguments& arguments) {
 
 CommandRunner RegisterGenerate(CLI::App& app) {
   auto arguments = std::make_shared<GenerateArguments>();
-  CLI::App* command = app.add_subcommand("generate", "Sample a bounded domain with one algorithm");
+  CLI::App* command = app.add_subcommand(
+      "generate", "Sample a bounded domain: one algorithm, a radius field or layers");
   command
       ->add_option("--algorithm", arguments->algorithm,
                    "a1, a2, a3, dart, best-candidate or bridson")
@@ -228,6 +229,7 @@ CommandRunner RegisterGenerate(CLI::App& app) {
       "--world-file", arguments->world_file,
       "A world as YAML (the keys of a named world in scallopd's config), sampled on the domain "
       "alone: its layers, its field, or its algorithm and spacing, with its seed");
+  file->type_name("FILE");
   for (const char* option : {"--seed", "--min-distance", "--algorithm", "--density",
                              "--radius-noise", "--radius-raster", "--layer", "--exclusion"}) {
     if (CLI::Option* other = command->get_option_no_throw(option)) file->excludes(other);
