@@ -116,6 +116,23 @@ void BM_LayeredCold(benchmark::State& state) {
   ReportLargestEmptySpots(state, world, last, square);
 }
 
+// The same layers sampled on the square alone (SampleLayers), as a studio would run them over a
+// bounded map: the apples-to-apples rival of the bounded passes below.
+void BM_LayeredBounded(benchmark::State& state) {
+  const World world = Forest();
+  const Rect square = SquareFor(state.range(0));
+  const LayeredSamplerOptions options = BoundedLayersOn(*world.layers(), square);
+  PlanePoints last;
+  for (auto _ : state) {
+    StatusOr<LayeredPoints> sampled = SampleLayers(options);
+    benchmark::DoNotOptimize(sampled->positions.data());
+    last.positions = std::move(sampled->positions);
+    last.layers = std::move(sampled->layers);
+  }
+  Report(state, static_cast<int64_t>(last.positions.size()));
+  ReportLargestEmptySpots(state, world, last, square);
+}
+
 void BM_UniformCold(benchmark::State& state) {
   const World world = *World::Create({.seed = 2026, .min_distance = 1.5});
   const Rect square = SquareFor(state.range(0));
@@ -187,6 +204,10 @@ void BM_StudioPasses(benchmark::State& state, PassSource source) {
 }
 
 BENCHMARK(BM_LayeredCold)->Name("layers_cold_smoke")->Arg(5000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LayeredBounded)
+    ->Name("layers_bounded_smoke")
+    ->Arg(5000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_UniformCold)->Name("uniform_cold_smoke")->Arg(5000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_StudioPasses, bounded, PassSource::kBoundedA3)
     ->Name("studio_passes_smoke")
@@ -197,6 +218,10 @@ BENCHMARK_CAPTURE(BM_StudioPasses, plane, PassSource::kPlane)
     ->Arg(5000)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LayeredCold)->Name("layers_cold_250k")->Arg(250000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LayeredBounded)
+    ->Name("layers_bounded_250k")
+    ->Arg(250000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_UniformCold)->Name("uniform_cold_250k")->Arg(250000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_StudioPasses, bounded, PassSource::kBoundedA3)
     ->Name("studio_passes_250k")

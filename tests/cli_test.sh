@@ -369,6 +369,49 @@ cp "$work/out" "$work/forest.csv"
 expect_exit 0 plane "${forest[@]}" --rect -20,-20,20,20 --layers rocks,trees
 check "plane --layers: the unfiltered rows of those layers" \
   test "$(tail -n +2 "$work/out" | sort)" = "$(grep -v ',bushes$' "$work/forest.csv" | tail -n +2 | sort)"
+# generate: the same layers sampled on a bounded rectangle alone (SampleLayers).
+expect_exit 0 generate "${forest[@]}" --domain 0,0,30,30 --stats
+check "generate layers: CSV header is x,y,layer" test "$(head -n 1 "$work/out")" = "x,y,layer"
+check "generate layers: --stats counts the layers" grep -qE '^layers 3$' "$work/err"
+cp "$work/out" "$work/bounded-forest.csv"
+check "generate layers: every pair keeps d in its layer and D across (brute force)" python3 -c "
+import csv, itertools, math, sys
+d = {'trees': 8, 'bushes': 3, 'rocks': 1.5}
+def D(a, b):  # the default matrix: (sum of 1/r^2 over the layers up to the later)^-1/2
+    upto = {'trees': ['trees'], 'bushes': ['trees', 'bushes'], 'rocks': list(d)}
+    later = max(a, b, key=lambda n: list(d).index(n))
+    return sum(d[n] ** -2 for n in upto[later]) ** -0.5
+rows = [(float(r['x']), float(r['y']), r['layer']) for r in csv.DictReader(open('$work/bounded-forest.csv'))]
+assert {r[2] for r in rows} == set(d), 'a layer is missing'
+assert all(0 <= x < 30 and 0 <= y < 30 for x, y, _ in rows), 'a point outside the domain'
+for (x, y, a), (u, v, b) in itertools.combinations(rows, 2):
+    rule = d[a] if a == b else D(a, b)
+    if (x - u) ** 2 + (y - v) ** 2 < rule ** 2 * (1 - 1e-12):
+        sys.exit(f'{a} at ({x}, {y}) and {b} at ({u}, {v}) closer than {rule}')
+"
+expect_exit 0 generate "${forest[@]}" --domain 0,0,30,30 --layers rocks
+check "generate --layers: the unfiltered rows of that layer" \
+  test "$(tail -n +2 "$work/out")" = "$(grep ',rocks$' "$work/bounded-forest.csv")"
+expect_exit 0 generate "${forest[@]}" --layer ferns=noise:1,2,0.02 --domain 0,0,20,20
+check "generate field layer: CSV header is x,y,layer,r" test "$(head -n 1 "$work/out")" = "x,y,layer,r"
+expect_bad_argument "--algorithm: layers are sampled by a3 only" generate "${forest[@]}" --algorithm a2
+expect_bad_argument "--torus: layers are sampled on rectangles only" generate "${forest[@]}" --torus
+expect_bad_argument "--layers: needs --layer" generate --layers rocks
+expect_bad_argument "world.layers[1].name" generate --layer trees=8 --layer trees=3
+# generate --world-file: the file's world sampled on the domain alone, as its flags give it.
+printf 'seed: 7\nlayers:\n  - {name: trees, min_distance: 8}\n  - {name: bushes, min_distance: 3}\n  - {name: rocks, min_distance: 1.5}\n' \
+  >"$work/bounded-forest.yaml"
+expect_exit 0 generate --world-file "$work/bounded-forest.yaml" --domain 0,0,30,30
+check "generate --world-file, layered: the flags' points" cmp -s "$work/out" "$work/bounded-forest.csv"
+printf 'seed: 9\nmin_distance: 2\nalgorithm: a2\ndensity: 1.5\n' >"$work/plain.yaml"
+expect_exit 0 generate --world-file "$work/plain.yaml" --domain 0,0,30,30
+cp "$work/out" "$work/plain-file.csv"
+expect_exit 0 generate --seed 9 --min-distance 2 --algorithm a2 --density 1.5 --domain 0,0,30,30
+check "generate --world-file, plain: the flags' points" cmp -s "$work/out" "$work/plain-file.csv"
+expect_bad_argument "--torus: --world-file" generate --world-file "$work/bounded-forest.yaml" \
+  --domain 0,0,30,30 --torus
+expect_bad_argument "--layers: --world-file" generate --world-file "$work/plain.yaml" --layers a
+expect_exit 2 generate --world-file "$work/plain.yaml" --seed 3
 expect_exit 0 plane "${forest[@]}" --layer ferns=noise:1,2,0.02 --rect -10,-10,10,10
 check "plane field layer: CSV header is id,x,y,layer,r" \
   test "$(head -n 1 "$work/out")" = "id,x,y,layer,r"

@@ -23,6 +23,23 @@ std::map<RegionKey, std::vector<ExclusionDisk>> RegionExclusions(const World& wo
               std::max(bounds.y1, r.y1)};
     result[key];
   }
+  // The keys by place: a dense table over the block of region indices that holds them.
+  const RegionLayout own_layout(world);
+  RegionRange key_range{keys.front(), keys.front()};
+  for (const RegionKey& key : keys) {
+    key_range.low = {std::min(key_range.low.i, key.i), std::min(key_range.low.j, key.j)};
+    key_range.high = {std::max(key_range.high.i, key.i), std::max(key_range.high.j, key.j)};
+  }
+  const auto key_columns = static_cast<size_t>(key_range.high.i - key_range.low.i + 1);
+  struct Target {
+    std::vector<ExclusionDisk>* disks;
+    Rect sampled;
+    RegionRange near;  // the earlier layer's regions near `sampled`
+  };
+  std::vector<Target> storage;
+  storage.reserve(result.size());
+  std::vector<Target*> targets(key_columns *
+                               static_cast<size_t>(key_range.high.j - key_range.low.j + 1));
   for (size_t j = 0; j < earlier.worlds.size(); ++j) {
     const double distance = earlier.distances[j];
     if (!(distance > 0.0)) continue;
@@ -37,17 +54,46 @@ std::map<RegionKey, std::vector<ExclusionDisk>> RegionExclusions(const World& wo
     }
     const std::vector<RegionHandle> regions = resolve(layer, wanted);
     const auto columns = static_cast<size_t>(range.high.i - range.low.i + 1);
-    const double squared = distance * distance;
+    storage.clear();
     for (auto& [key, disks] : result) {
       const Rect sampled = SampledRect(world, key);
-      const RegionRange near = RegionsOverlapping(layout, Grown(sampled, distance));
-      for (int64_t rj = near.low.j; rj <= near.high.j; ++rj) {
-        for (int64_t ri = near.low.i; ri <= near.high.i; ++ri) {
-          const size_t at = static_cast<size_t>(rj - range.low.j) * columns +
-                            static_cast<size_t>(ri - range.low.i);
-          // A region's points are exactly the layer's points in its rectangle: each once.
-          for (const Vec2& p : regions[at]->points) {
-            if (SquaredDistance(sampled, p) < squared) disks.push_back({p, distance});
+      storage.push_back({&disks, sampled, RegionsOverlapping(layout, Grown(sampled, distance))});
+      targets[static_cast<size_t>(key.j - key_range.low.j) * key_columns +
+              static_cast<size_t>(key.i - key_range.low.i)] = &storage.back();
+    }
+    // Beyond this from a point no key's sampled rectangle comes within D of it (a hundredth
+    // more for rounding: a key found in excess is judged by the exact tests anyway).
+    const double reach_of_key = 1.01 * (SamplingMargin(world) + distance);
+    const double squared = distance * distance;
+    // Each point is offered to the few keys whose sampled rectangle it may be near (found by
+    // the later layer's layout), not to every key near its region: a trees' region is near
+    // about 50 rocks' regions. A key takes a point under the very tests it always did (the
+    // point's region near the key's rectangle, the point within D of it), and its points come
+    // in the same order (regions in rows, then points in index order), so its list is the same.
+    const Rect reach_of_point{-reach_of_key, -reach_of_key, reach_of_key, reach_of_key};
+    for (int64_t rj = range.low.j; rj <= range.high.j; ++rj) {
+      for (int64_t ri = range.low.i; ri <= range.high.i; ++ri) {
+        const size_t at =
+            static_cast<size_t>(rj - range.low.j) * columns + static_cast<size_t>(ri - range.low.i);
+        for (const Vec2& p : regions[at]->points) {
+          const RegionRange keys_near =
+              RegionsOverlapping(own_layout, {p.x + reach_of_point.x0, p.y + reach_of_point.y0,
+                                              p.x + reach_of_point.x1, p.y + reach_of_point.y1});
+          for (int64_t kj = std::max(keys_near.low.j, key_range.low.j);
+               kj <= std::min(keys_near.high.j, key_range.high.j); ++kj) {
+            for (int64_t ki = std::max(keys_near.low.i, key_range.low.i);
+                 ki <= std::min(keys_near.high.i, key_range.high.i); ++ki) {
+              Target* target = targets[static_cast<size_t>(kj - key_range.low.j) * key_columns +
+                                       static_cast<size_t>(ki - key_range.low.i)];
+              if (target == nullptr) continue;
+              const RegionRange& near = target->near;
+              if (ri < near.low.i || ri > near.high.i || rj < near.low.j || rj > near.high.j) {
+                continue;
+              }
+              if (SquaredDistance(target->sampled, p) < squared) {
+                target->disks->push_back({p, distance});
+              }
+            }
           }
         }
       }

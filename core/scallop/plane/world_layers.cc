@@ -241,4 +241,19 @@ StatusOr<World> WorldLayers::Create(const WorldSpec& spec) {
   return world;
 }
 
+LayeredSamplerOptions BoundedLayersOn(const WorldLayers& layers, const Rect& domain) {
+  LayeredSamplerOptions options;
+  options.domain = domain;
+  options.order = layers.generation_order();
+  const int n = layers.count();
+  for (int k = 0; k < n; ++k) {
+    const World& world = layers.world(k);
+    options.layers.push_back({.min_distance = world.min_distance(),
+                              .field = world.radius_field(),
+                              .seed = world.seed()});
+    for (int b = 0; b < n; ++b) options.exclusions.push_back(k == b ? 0.0 : layers.exclusion(k, b));
+  }
+  return options;
+}
+
 }  // namespace scallop

@@ -11,6 +11,7 @@
 
 #include "scallop/base/status.h"
 #include "scallop/plane/world.h"
+#include "scallop/sampling/layered_sampler.h"
 
 namespace scallop {
 
@@ -86,5 +87,11 @@ class WorldLayers {
 // as those layers together. Never above the smaller of r_a and r_b. `spacings` in generation
 // order; `later` the generation position of the later layer.
 double DefaultExclusion(const std::vector<double>& spacings, int later);
+
+// The layers of `layers` as a bounded run on `domain` samples them (SampleLayers): each layer's
+// spacing or field and its world's seed, the generation order and the matrix. The options point
+// into `layers`' fields, so `layers` must outlive them. Not the plane's points: those are a
+// world's, this is one rectangle sampled on its own (docs/design.md, "On a bounded rectangle").
+LayeredSamplerOptions BoundedLayersOn(const WorldLayers& layers, const Rect& domain);
 
 }  // namespace scallop

@@ -104,7 +104,8 @@ void BoundaryExclusions::StartSearch(double circle) {
   circle_ = circle;
 }
 
-bool BoundaryExclusions::AddDisksNear(Vec2 centre, const DiskBins* const* tables, size_t skip) {
+bool BoundaryExclusions::AddDisksNear(const Vec2& centre, const DiskBins* const* tables,
+                                      size_t skip) {
   if (disks_.empty()) return true;
   const double circle = circle_;
   // Cells clamped to the grid: every centre lies in it, so the clamped range still holds each
@@ -170,7 +171,7 @@ void BoundaryExclusions::Cut(AvailableBoundary& boundary) const {
 
 void BoundaryExclusions::CutAroundDisk(size_t k, std::span<const Vec2> points,
                                        AvailableBoundary& boundary) {
-  const Vec2 centre = disks_[k].centre;
+  const Vec2& centre = disks_[k].centre;
   const Radius& circle = radii_[disks_[k].radius];
   StartSearch(circle.cut);
   // The points' arcs first: they cover nearly every disk's circle (by their bins alone), and

@@ -49,7 +49,7 @@ class BoundaryExclusions {
   // an arc is computed only if it may meet a bin the ranges meet, and the bins a disk covers
   // whole (DiskBins' table for its ratio, where it has one) are cut as they are.
   // O(disks near the circle + ranges x exact cuts).
-  void CutAroundPoint(Vec2 centre, AvailableBoundary& boundary) {
+  void CutAroundPoint(const Vec2& centre, AvailableBoundary& boundary) {
     if (GatherAroundPoint(centre)) {
       Cut(boundary);
     } else {
@@ -60,7 +60,7 @@ class BoundaryExclusions {
   // CutAroundPoint in two steps, so that the disks' whole bins can be dropped before the
   // points' arcs are cut (CandidateBoundary::Build's covered_later): first the disks near the
   // circle, remembered for the calls below and Excludes (false: one holds the whole circle)...
-  bool GatherAroundPoint(Vec2 centre) {
+  bool GatherAroundPoint(const Vec2& centre) {
     StartSearch(spacing_);
     return AddDisksNear(centre, from_point_.data(), SIZE_MAX);
   }
@@ -109,7 +109,7 @@ class BoundaryExclusions {
   void StartSearch(double circle);
   // Adds to arcs_ and near_ the disks (but `skip`) whose cut circle may meet the circle of the
   // search about `centre`; `tables[j]` sees radius j's disks from it. False: one holds it whole.
-  bool AddDisksNear(Vec2 centre, const DiskBins* const* tables, size_t skip);
+  bool AddDisksNear(const Vec2& centre, const DiskBins* const* tables, size_t skip);
   // Appends to arcs_ the arc of the circle (radius `circle`, table scale `scale` = 16 / circle)
   // that the disk of radius `disk_radius` at `offset` covers, by `table` or exactly. False: it
   // holds the whole circle.
