@@ -42,9 +42,26 @@ std::vector<Rect> OpenRects(const RegionLayout& layout, RegionKey key, const Rec
   return open;
 }
 
+// Two lanes of doubles in one SSE2 register (a GCC and Clang vector extension).
+using Doubles = double __attribute__((vector_size(16)));
+
+// SquaredDistance(r, p) with both axes in the lanes of one register and no branch: along
+// each, the larger of r.x0 - p.x and p.x - r.x1, or 0 when both are below it, as
+// SquaredDistance takes the largest of the three (which of two equal values is taken, +0 or
+// -0, does not change its square), then the same sum of squares: the same bits.
+double SquaredDistanceInLanes(const Rect& r, Vec2 p) {
+  const Doubles v = {p.x, p.y};
+  const Doubles below = Doubles{r.x0, r.y0} - v, above = v - Doubles{r.x1, r.y1};
+  const Doubles zero = {0.0, 0.0};
+  Doubles distance = below > above ? below : above;
+  distance = distance > zero ? distance : zero;
+  const Doubles squares = distance * distance;
+  return squares[0] + squares[1];
+}
+
 double SquaredDistanceToAny(const std::vector<Rect>& rects, Vec2 p) {
-  double nearest = SquaredDistance(rects.front(), p);
-  for (const Rect& r : rects) nearest = std::min(nearest, SquaredDistance(r, p));
+  double nearest = SquaredDistanceInLanes(rects.front(), p);
+  for (const Rect& r : rects) nearest = std::min(nearest, SquaredDistanceInLanes(r, p));
   return nearest;
 }
 
@@ -74,7 +91,6 @@ Rect KeepableZone(const Rect& sampled, const std::vector<Rect>& open, double rea
 size_t IndicesInZone(std::span<const Vec2> own, std::span<const Vec2> spill, const Rect& zone,
                      std::vector<uint32_t>& near) {
   // Both coordinates at once, in the two lanes of an SSE2 register.
-  using Doubles = double __attribute__((vector_size(16)));
   using Bits = int64_t __attribute__((vector_size(16)));
   const Doubles low = {zone.x0, zone.y0}, high = {zone.x1, zone.y1};
   near.resize(own.size() + spill.size());
@@ -112,6 +128,12 @@ NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
 
   NeighbourPoints gathered;
   std::vector<uint32_t> near;
+  // Written without a branch a point (whether a point is fixed, inert or left out follows no
+  // pattern a predictor could learn): each list is sized for every point in the zone, each
+  // point written to all three, and each count moved past it only where it belongs. The lists
+  // keep the order of the branching version, so the same bits.
+  size_t fixed_count = 0, inert_count = 0, adopted_count = 0;
+  const double reach_squared = reach * reach, inert_squared = inert_reach * inert_reach;
   for (const RegionPoints* neighbour : lower_neighbours) {
     gathered.covered.push_back(layout.RegionRect(neighbour->key));
     // A neighbour's adopted points are another lower-ranked neighbour's
@@ -120,22 +142,31 @@ NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
                                     neighbour->points.end());
     const std::span<const Vec2> spill(neighbour->spill);
     const size_t count = IndicesInZone(own, spill, zone, near);
+    gathered.fixed.resize(fixed_count + count);
+    gathered.inert.resize(inert_count + count);
+    gathered.adopted.resize(adopted_count + count);
+    const std::vector<bool>& unprocessed = neighbour->unprocessed;
+    const bool all_may_seed = unprocessed.empty();
     for (size_t n = 0; n < count; ++n) {
       const uint32_t index = near[n];  // also the index into `unprocessed`
       const bool in_spill = index >= own.size();
       const Vec2 p = in_spill ? spill[index - own.size()] : own[index];
       // The zone holds the rectangle, so every point to adopt is seen here.
-      if (in_spill && rect.Contains(p)) gathered.adopted.push_back(p);
-      if (SquaredDistance(sampled, p) >= reach * reach) continue;
-      const bool may_seed = neighbour->unprocessed.empty() || neighbour->unprocessed[index];
+      gathered.adopted[adopted_count] = p;
+      adopted_count += in_spill & rect.ContainsBranchFree(p);
+      const bool near_sampled = SquaredDistanceInLanes(sampled, p) < reach_squared;
+      const bool may_seed = all_may_seed || unprocessed[index];
       const double squared_distance = SquaredDistanceToAny(open, p);
-      if (may_seed && squared_distance < reach * reach) {
-        gathered.fixed.push_back(p);
-      } else if (squared_distance < inert_reach * inert_reach) {
-        gathered.inert.push_back(p);
-      }
+      const bool fixed = near_sampled & may_seed & (squared_distance < reach_squared);
+      gathered.fixed[fixed_count] = p;
+      fixed_count += fixed;
+      gathered.inert[inert_count] = p;
+      inert_count += near_sampled & !fixed & (squared_distance < inert_squared);
     }
   }
+  gathered.fixed.resize(fixed_count);
+  gathered.inert.resize(inert_count);
+  gathered.adopted.resize(adopted_count);
   return gathered;
 }
 
