@@ -25,12 +25,16 @@ namespace {
 // along outward normal n, the arc from a n - h n' to a n + h n'
 // (counterclockwise, n' = n turned left, h = sqrt(radius^2 - a^2)). Returns
 // false, appending nothing more, when the whole circle is outside.
-bool ClipToRectangle(const Rect& rect, Vec2 centre, double radius, std::vector<KeyArc>& arcs) {
-  // Most circles lie inside: four comparisons settle them.
-  if (std::min(centre.x - rect.x0, rect.x1 - centre.x) >= radius &&
-      std::min(centre.y - rect.y0, rect.y1 - centre.y) >= radius) {
-    return true;
-  }
+// Whether the circle of radius `radius` about `centre` lies inside the rectangle: four
+// comparisons settle most circles, without the call of ClipToRectangle.
+bool CircleInside(const Rect& rect, Vec2 centre, double radius) {
+  return std::min(centre.x - rect.x0, rect.x1 - centre.x) >= radius &&
+         std::min(centre.y - rect.y0, rect.y1 - centre.y) >= radius;
+}
+
+[[gnu::noinline]] bool ClipToRectangle(const Rect& rect, Vec2 centre, double radius,
+                                       std::vector<KeyArc>& arcs) {
+  if (CircleInside(rect, centre, radius)) return true;
   const struct {
     Vec2 normal;
     double distance;
@@ -232,7 +236,8 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
     pending_near_stop -= reaches_stop(p);
 
     outside_arcs.clear();
-    const bool inside = domain.torus || ClipToRectangle(domain.rect, p, spacing, outside_arcs);
+    const bool inside = domain.torus || CircleInside(domain.rect, p, spacing) ||
+                        ClipToRectangle(domain.rect, p, spacing, outside_arcs);
     nearby_count = grid.GatherNear(p, 2 * spacing, 4 * spacing_squared, index, nearby);
     if (inside && exclusions.empty()) {
       candidate_boundary.Build(p, outside_arcs, std::span(nearby.data(), nearby_count), boundary);
