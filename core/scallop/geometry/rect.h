@@ -19,11 +19,6 @@ struct Rect {
   constexpr double Area() const { return Width() * Height(); }
   // True when x0 <= p.x < x1 and y0 <= p.y < y1.
   constexpr bool Contains(Vec2 p) const { return x0 <= p.x && p.x < x1 && y0 <= p.y && p.y < y1; }
-  // Contains without its branches, for loops where whether a point lies in the rectangle
-  // follows no pattern a branch predictor could learn.
-  constexpr bool ContainsBranchFree(Vec2 p) const {
-    return (x0 <= p.x) & (p.x < x1) & (y0 <= p.y) & (p.y < y1);
-  }
   friend constexpr bool operator==(const Rect&, const Rect&) = default;
 };
 

@@ -153,7 +153,7 @@ NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
       const Vec2 p = in_spill ? spill[index - own.size()] : own[index];
       // The zone holds the rectangle, so every point to adopt is seen here.
       gathered.adopted[adopted_count] = p;
-      adopted_count += in_spill & rect.ContainsBranchFree(p);
+      adopted_count += in_spill & ContainsBranchFree(rect, p);
       const bool near_sampled = SquaredDistanceInLanes(sampled, p) < reach_squared;
       const bool may_seed = all_may_seed || unprocessed[index];
       const double squared_distance = SquaredDistanceToAny(open, p);
