@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "scallop/geometry/rect_distance.h"
 #include "scallop/plane/region_layout.h"
 
 namespace scallop {
@@ -42,23 +43,6 @@ std::vector<Rect> OpenRects(const RegionLayout& layout, RegionKey key, const Rec
   return open;
 }
 
-// Two lanes of doubles in one SSE2 register (a GCC and Clang vector extension).
-using Doubles = double __attribute__((vector_size(16)));
-
-// SquaredDistance(r, p) with both axes in the lanes of one register and no branch: along
-// each, the larger of r.x0 - p.x and p.x - r.x1, or 0 when both are below it, as
-// SquaredDistance takes the largest of the three (which of two equal values is taken, +0 or
-// -0, does not change its square), then the same sum of squares: the same bits.
-double SquaredDistanceInLanes(const Rect& r, Vec2 p) {
-  const Doubles v = {p.x, p.y};
-  const Doubles below = Doubles{r.x0, r.y0} - v, above = v - Doubles{r.x1, r.y1};
-  const Doubles zero = {0.0, 0.0};
-  Doubles distance = below > above ? below : above;
-  distance = distance > zero ? distance : zero;
-  const Doubles squares = distance * distance;
-  return squares[0] + squares[1];
-}
-
 double SquaredDistanceToAny(const std::vector<Rect>& rects, Vec2 p) {
   double nearest = SquaredDistanceInLanes(rects.front(), p);
   for (const Rect& r : rects) nearest = std::min(nearest, SquaredDistanceInLanes(r, p));
@@ -91,6 +75,7 @@ Rect KeepableZone(const Rect& sampled, const std::vector<Rect>& open, double rea
 size_t IndicesInZone(std::span<const Vec2> own, std::span<const Vec2> spill, const Rect& zone,
                      std::vector<uint32_t>& near) {
   // Both coordinates at once, in the two lanes of an SSE2 register.
+  using Doubles = double __attribute__((vector_size(16)));
   using Bits = int64_t __attribute__((vector_size(16)));
   const Doubles low = {zone.x0, zone.y0}, high = {zone.x1, zone.y1};
   near.resize(own.size() + spill.size());

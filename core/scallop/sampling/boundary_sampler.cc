@@ -9,6 +9,7 @@
 #include <span>
 #include <type_traits>
 
+#include "scallop/geometry/rect_distance.h"
 #include "scallop/sampling/available_boundary.h"
 #include "scallop/sampling/boundary_arcs.h"
 #include "scallop/sampling/boundary_exclusions.h"
@@ -174,7 +175,9 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
   // covered (F1 is continuous: an uncovered spot would put a spot at
   // distance exactly `spacing` from a point, on an unconsumed circle).
   const std::optional<Rect>& stop = problem.stop_when_covered;
-  auto reaches_stop = [&](Vec2 p) { return stop && SquaredDistance(*stop, p) <= spacing_squared; };
+  auto reaches_stop = [&](Vec2 p) {
+    return stop && SquaredDistanceInLanes(*stop, p) <= spacing_squared;
+  };
   int64_t pending_near_stop = 0;
   auto add_candidate = [&](int32_t index, Vec2 p) {
     grid.Insert(index, p);
