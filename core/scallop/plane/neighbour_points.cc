@@ -113,8 +113,8 @@ NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
 
   NeighbourPoints gathered;
   std::vector<uint32_t> near;
-  // Written without a branch a point (whether a point is fixed, inert or left out follows no
-  // pattern a predictor could learn): each list is sized for every point in the zone, each
+  // Filed without a branch on each point (whether a point is fixed, inert or left out follows
+  // no pattern a predictor could learn): each list is sized for every point in the zone, each
   // point written to all three, and each count moved past it only where it belongs. The lists
   // keep the order of the branching version, so the same bits.
   size_t fixed_count = 0, inert_count = 0, adopted_count = 0;

@@ -21,11 +21,6 @@
 namespace scallop {
 namespace {
 
-// Appends to `arcs` the arcs of the circle of radius `radius` about `centre`
-// that fall outside the half-open rectangle: beyond an edge at distance a
-// along outward normal n, the arc from a n - h n' to a n + h n'
-// (counterclockwise, n' = n turned left, h = sqrt(radius^2 - a^2)). Returns
-// false, appending nothing more, when the whole circle is outside.
 // Whether the circle of radius `radius` about `centre` lies inside the rectangle: four
 // comparisons settle most circles, without the call of ClipToRectangle.
 bool CircleInside(const Rect& rect, Vec2 centre, double radius) {
@@ -33,6 +28,11 @@ bool CircleInside(const Rect& rect, Vec2 centre, double radius) {
          std::min(centre.y - rect.y0, rect.y1 - centre.y) >= radius;
 }
 
+// Appends to `arcs` the arcs of the circle of radius `radius` about `centre`
+// that fall outside the half-open rectangle: beyond an edge at distance a
+// along outward normal n, the arc from a n - h n' to a n + h n'
+// (counterclockwise, n' = n turned left, h = sqrt(radius^2 - a^2)). Returns
+// false, appending nothing more, when the whole circle is outside.
 [[gnu::noinline]] bool ClipToRectangle(const Rect& rect, Vec2 centre, double radius,
                                        std::vector<KeyArc>& arcs) {
   if (CircleInside(rect, centre, radius)) return true;
