@@ -119,6 +119,16 @@ NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
   // keep the order of the branching version, so the same bits.
   size_t fixed_count = 0, inert_count = 0, adopted_count = 0;
   const double reach_squared = reach * reach, inert_squared = inert_reach * inert_reach;
+  // Room for every neighbour point at once: sized a neighbour at a time, the lists were copied
+  // as they grew.
+  size_t most = 0;
+  for (const RegionPoints* neighbour : lower_neighbours) {
+    most += neighbour->points.size() - neighbour->adopted + neighbour->spill.size();
+  }
+  gathered.fixed.reserve(most);
+  gathered.inert.reserve(most);
+  gathered.adopted.reserve(most);
+  gathered.covered.reserve(lower_neighbours.size());
   for (const RegionPoints* neighbour : lower_neighbours) {
     gathered.covered.push_back(layout.RegionRect(neighbour->key));
     // A neighbour's adopted points are another lower-ranked neighbour's
