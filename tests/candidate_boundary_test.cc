@@ -120,6 +120,47 @@ TEST(ArcBinsTest, NeighbourCheckCatchesAPlantedFault) {
   EXPECT_GT(failures, 100);
 }
 
+// How many of `trials` neighbours, at awkward offsets from centres near the origin and far
+// from it, `lookup(table, q, centre)` gives other bins than the scalar Of(q - centre) that the
+// tables' checks above vouch for.
+template <typename Lookup>
+int LaneLookupMismatches(uint64_t seed, int trials, Lookup lookup) {
+  Rng rng(seed);
+  int mismatches = 0;
+  for (const double spacing : {1.0, 1e-3, 7.3, 3e5}) {
+    const NeighbourBins table(spacing);
+    for (int trial = 0; trial < trials; ++trial) {
+      // Centres up to 2^32 spacings out, where q - centre rounds.
+      const double reach = std::ldexp(spacing, static_cast<int>(rng.Below(33)));
+      const Vec2 centre = {rng.Uniform(-reach, reach), rng.Uniform(-reach, reach)};
+      const Vec2 unit_offset = AwkwardOffset(rng);
+      const Vec2 q = {centre.x + unit_offset.x * spacing, centre.y + unit_offset.y * spacing};
+      if (!(SquaredLength(q - centre) < 4 * spacing * spacing)) continue;  // Of's REQUIRES
+      const ArcBins expected = table.Of(q - centre), actual = lookup(table, q, centre);
+      mismatches += expected.covered != actual.covered || expected.reached != actual.reached;
+    }
+  }
+  return mismatches;
+}
+
+TEST(ArcBinsTest, NeighbourBinsInLanesGiveTheScalarLookup) {
+  EXPECT_EQ(LaneLookupMismatches(14, 40000,
+                                 [](const NeighbourBins& table, Vec2 q, Vec2 centre) {
+                                   return table.Of(q, centre);
+                                 }),
+            0);
+}
+
+TEST(ArcBinsTest, LaneLookupCheckCatchesAPlantedFault) {
+  // The same comparison against a lookup that swaps the lanes (row for column): it must differ
+  // for many offsets.
+  const int mismatches =
+      LaneLookupMismatches(15, 1000, [](const NeighbourBins& table, Vec2 q, Vec2 centre) {
+        return table.Of(Vec2{q.y, q.x}, Vec2{centre.y, centre.x});
+      });
+  EXPECT_GT(mismatches, 1000);
+}
+
 TEST(AvailableBoundaryBinsTest, ResetToBinsGivesARangeToEachRun) {
   Rng rng(14);
   AvailableBoundary boundary;

@@ -8,9 +8,11 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "scallop/geometry/rect_distance.h"
 #include "scallop/plane/neighbour_points.h"
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/region_layout.h"
@@ -136,6 +138,39 @@ TEST(PlaneNeighbourPointsTest, GathersWhatTheOracleGathers) {
   // The cases have points of every kind, and points just beyond what is kept.
   EXPECT_GT(cases, 40);
   EXPECT_GT(near_misses, 1000);
+}
+
+// How many of `trials` points, against random rectangles, `measure` gives other bits than
+// SquaredDistance: points inside, outside, on edges and corners (where the distance along an
+// axis is +0 or -0), near the origin and far from it.
+template <typename Measure>
+int DistanceMismatches(uint64_t seed, int trials, Measure measure) {
+  Rng rng(seed);
+  int mismatches = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    const double scale = std::ldexp(1.0, static_cast<int>(rng.Below(40)) - 8);
+    const double x0 = rng.Uniform(-scale, scale), y0 = rng.Uniform(-scale, scale);
+    const Rect r{x0, y0, x0 + rng.Uniform(0, scale), y0 + rng.Uniform(0, scale)};
+    const double xs[] = {r.x0, r.x1, -r.x0, rng.Uniform(-2 * scale, 2 * scale), 0.0, -0.0};
+    const double ys[] = {r.y0, r.y1, -r.y1, rng.Uniform(-2 * scale, 2 * scale), 0.0, -0.0};
+    const Vec2 p{xs[rng.Below(6)], ys[rng.Below(6)]};
+    mismatches +=
+        std::bit_cast<uint64_t>(measure(r, p)) != std::bit_cast<uint64_t>(SquaredDistance(r, p));
+  }
+  return mismatches;
+}
+
+TEST(PlaneNeighbourPointsTest, SquaredDistanceInLanesIsSquaredDistanceBitForBit) {
+  EXPECT_EQ(DistanceMismatches(72, 200000, SquaredDistanceInLanes), 0);
+}
+
+TEST(PlaneNeighbourPointsTest, DistanceCheckCatchesAPlantedFault) {
+  // Without the clamp at 0 a point inside measures its distance to the far edges: caught.
+  const int mismatches = DistanceMismatches(73, 2000, [](const Rect& r, Vec2 p) {
+    const double dx = std::max(r.x0 - p.x, p.x - r.x1), dy = std::max(r.y0 - p.y, p.y - r.y1);
+    return dx * dx + dy * dy;
+  });
+  EXPECT_GT(mismatches, 200);
 }
 
 }  // namespace

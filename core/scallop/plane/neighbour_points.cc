@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "scallop/geometry/rect_distance.h"
 #include "scallop/plane/region_layout.h"
 
 namespace scallop {
@@ -43,8 +44,8 @@ std::vector<Rect> OpenRects(const RegionLayout& layout, RegionKey key, const Rec
 }
 
 double SquaredDistanceToAny(const std::vector<Rect>& rects, Vec2 p) {
-  double nearest = SquaredDistance(rects.front(), p);
-  for (const Rect& r : rects) nearest = std::min(nearest, SquaredDistance(r, p));
+  double nearest = SquaredDistanceInLanes(rects.front(), p);
+  for (const Rect& r : rects) nearest = std::min(nearest, SquaredDistanceInLanes(r, p));
   return nearest;
 }
 
@@ -112,6 +113,22 @@ NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
 
   NeighbourPoints gathered;
   std::vector<uint32_t> near;
+  // Filed without a branch on each point (whether a point is fixed, inert or left out follows
+  // no pattern a predictor could learn): each list is sized for every point in the zone, each
+  // point written to all three, and each count moved past it only where it belongs. The lists
+  // keep the order of the branching version, so the same bits.
+  size_t fixed_count = 0, inert_count = 0, adopted_count = 0;
+  const double reach_squared = reach * reach, inert_squared = inert_reach * inert_reach;
+  // Room for every neighbour point at once: sized a neighbour at a time, the lists were copied
+  // as they grew.
+  size_t most = 0;
+  for (const RegionPoints* neighbour : lower_neighbours) {
+    most += neighbour->points.size() - neighbour->adopted + neighbour->spill.size();
+  }
+  gathered.fixed.reserve(most);
+  gathered.inert.reserve(most);
+  gathered.adopted.reserve(most);
+  gathered.covered.reserve(lower_neighbours.size());
   for (const RegionPoints* neighbour : lower_neighbours) {
     gathered.covered.push_back(layout.RegionRect(neighbour->key));
     // A neighbour's adopted points are another lower-ranked neighbour's
@@ -120,22 +137,31 @@ NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
                                     neighbour->points.end());
     const std::span<const Vec2> spill(neighbour->spill);
     const size_t count = IndicesInZone(own, spill, zone, near);
+    gathered.fixed.resize(fixed_count + count);
+    gathered.inert.resize(inert_count + count);
+    gathered.adopted.resize(adopted_count + count);
+    const std::vector<bool>& unprocessed = neighbour->unprocessed;
+    const bool all_may_seed = unprocessed.empty();
     for (size_t n = 0; n < count; ++n) {
       const uint32_t index = near[n];  // also the index into `unprocessed`
       const bool in_spill = index >= own.size();
       const Vec2 p = in_spill ? spill[index - own.size()] : own[index];
       // The zone holds the rectangle, so every point to adopt is seen here.
-      if (in_spill && rect.Contains(p)) gathered.adopted.push_back(p);
-      if (SquaredDistance(sampled, p) >= reach * reach) continue;
-      const bool may_seed = neighbour->unprocessed.empty() || neighbour->unprocessed[index];
+      gathered.adopted[adopted_count] = p;
+      adopted_count += in_spill & ContainsBranchFree(rect, p);
+      const bool near_sampled = SquaredDistanceInLanes(sampled, p) < reach_squared;
+      const bool may_seed = all_may_seed || unprocessed[index];
       const double squared_distance = SquaredDistanceToAny(open, p);
-      if (may_seed && squared_distance < reach * reach) {
-        gathered.fixed.push_back(p);
-      } else if (squared_distance < inert_reach * inert_reach) {
-        gathered.inert.push_back(p);
-      }
+      const bool fixed = near_sampled & may_seed & (squared_distance < reach_squared);
+      gathered.fixed[fixed_count] = p;
+      fixed_count += fixed;
+      gathered.inert[inert_count] = p;
+      inert_count += near_sampled & !fixed & (squared_distance < inert_squared);
     }
   }
+  gathered.fixed.resize(fixed_count);
+  gathered.inert.resize(inert_count);
+  gathered.adopted.resize(adopted_count);
   return gathered;
 }
 

@@ -13,6 +13,13 @@
 
 namespace scallop {
 
+// Rect::Contains without its branches, for the loops over a region's points that gather and
+// store them: whether a point lies in the rectangle follows no pattern a branch predictor
+// could learn.
+inline bool ContainsBranchFree(const Rect& r, Vec2 p) {
+  return (r.x0 <= p.x) & (p.x < r.x1) & (r.y0 <= p.y) & (p.y < r.y1);
+}
+
 struct NeighbourPoints {
   std::vector<Vec2> fixed;    // constrain and seed: SamplingProblem::fixed_points
   std::vector<Vec2> inert;    // only constrain: SamplingProblem::inert_points

@@ -53,12 +53,6 @@ std::vector<RegionKey> LowerRankedNeighbours(RegionKey key) {
 
 namespace {
 
-// Rect::Contains without its branches: whether a placed point lies in the
-// rectangle follows no pattern a branch predictor could learn.
-bool InRect(const Rect& r, Vec2 p) {
-  return (r.x0 <= p.x) & (p.x < r.x1) & (r.y0 <= p.y) & (p.y < r.y1);
-}
-
 // Stores the run's points after the adopted ones: those in the rectangle as
 // the region's own, the others as its spill, each in run order, with A3's
 // flags (own, then spill) when the run gave them. Exact capacities, as the
@@ -67,20 +61,20 @@ void StorePlaced(const std::vector<Vec2>& placed, const std::vector<bool>& place
                  const Rect& rect, const Rect& clipped_near, RegionPoints& region) {
   const size_t adopted = region.points.size();
   size_t inside = 0;
-  for (const Vec2& p : placed) inside += InRect(rect, p);
+  for (const Vec2& p : placed) inside += ContainsBranchFree(rect, p);
   region.points.resize(adopted + inside);
   region.spill.resize(placed.size() - inside);
   const bool has_flags = !placed_unprocessed.empty();
   if (has_flags) region.unprocessed.assign(placed.size(), false);
   size_t own = 0, spill = 0;
   for (size_t k = 0; k < placed.size(); ++k) {
-    const bool in_rect = InRect(rect, placed[k]);
+    const bool in_rect = ContainsBranchFree(rect, placed[k]);
     *(in_rect ? region.points.data() + adopted + own : region.spill.data() + spill) = placed[k];
     if (has_flags) {
       // A point whose circle crossed the sampled rectangle's edge had that
       // part clipped, not covered: it may still seed a later region.
       region.unprocessed[in_rect ? own : inside + spill] =
-          placed_unprocessed[k] || !InRect(clipped_near, placed[k]);
+          placed_unprocessed[k] || !ContainsBranchFree(clipped_near, placed[k]);
     }
     own += in_rect;
     spill += !in_rect;

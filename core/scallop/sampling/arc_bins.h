@@ -10,6 +10,10 @@
 #include <cstdint>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "scallop/geometry/vec2.h"
 #include "scallop/sampling/available_boundary.h"
 
@@ -38,6 +42,21 @@ class NeighbourBins {
   // REQUIRES: SquaredLength(offset) < 4 s^2 (as A3's gather computes it). O(1).
   ArcBins Of(Vec2 offset) const {
     return (*cells_)[Cell(offset.y * scale_) * kSide + Cell(offset.x * scale_)];
+  }
+  // Of(q - centre), with both coordinates in the lanes of one register: the same operations
+  // on each, so the same cell, in fewer instructions (A3 asks for 7.5 a candidate).
+  ArcBins Of(Vec2 q, Vec2 centre) const {
+#if defined(__SSE2__)
+    const Doubles scaled =
+        (Doubles{q.x, q.y} - Doubles{centre.x, centre.y}) * Doubles{scale_, scale_} +
+        Doubles{kCells / 2, kCells / 2};
+    // Truncation towards zero in both lanes, as Cell's cast.
+    const auto both = static_cast<uint64_t>(_mm_cvtsi128_si64(_mm_cvttpd_epi32(scaled)));
+    const auto column = static_cast<int32_t>(both), row = static_cast<int32_t>(both >> 32);
+    return (*cells_)[row * kSide + column];
+#else
+    return Of(q - centre);
+#endif
   }
 
  private:

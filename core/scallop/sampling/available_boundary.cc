@@ -25,9 +25,13 @@ void AvailableBoundary::ResetToBins(uint64_t bins) {
   }
 }
 
-double AvailableBoundary::SampleKey(Rng& rng) const {
+double AvailableBoundary::TotalLength() const {
   double total = 0.0;
   for (const Range& r : ranges()) total += r.end - r.begin;
+  return total;
+}
+
+double AvailableBoundary::SampleKey(Rng& rng, double total) const {
   double target = rng.Uniform() * total;
   for (const Range& r : ranges()) {
     const double length = r.end - r.begin;
@@ -39,8 +43,11 @@ double AvailableBoundary::SampleKey(Rng& rng) const {
 }
 
 AvailableBoundary::Draw AvailableBoundary::SampleDirection(Rng& rng) const {
+  // The ranges do not change between tries, so neither does their total: summed once, in the
+  // same order as each try summed it before, so the same bits.
+  const double total = TotalLength();
   while (true) {
-    const double key = SampleKey(rng);
+    const double key = SampleKey(rng, total);
     const Vec2 direction = DirectionAtKey(key);
     if (rng.Uniform() * (2.0 * SquaredLength(direction)) < 1.0) return {direction, key};
   }

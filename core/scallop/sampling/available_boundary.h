@@ -138,8 +138,10 @@ class AvailableBoundary {
  private:
   // Removes the closed key interval [begin, end], 0 <= begin <= end <= 4.
   void SubtractKeys(double begin, double end);
-  // A key drawn uniformly from the ranges.
-  double SampleKey(Rng& rng) const;
+  // The ranges' total length, summed in their order.
+  double TotalLength() const;
+  // A key drawn uniformly from the ranges, given their TotalLength().
+  double SampleKey(Rng& rng, double total) const;
   // Room for `count` ranges in both buffers. Rare: the sizes only grow.
   [[gnu::noinline]] void Grow(size_t count);
 

@@ -9,6 +9,7 @@
 #include <span>
 #include <type_traits>
 
+#include "scallop/geometry/rect_distance.h"
 #include "scallop/sampling/available_boundary.h"
 #include "scallop/sampling/boundary_arcs.h"
 #include "scallop/sampling/boundary_exclusions.h"
@@ -20,17 +21,21 @@
 namespace scallop {
 namespace {
 
+// Whether the circle of radius `radius` about `centre` lies inside the rectangle: four
+// comparisons settle most circles, without the call of ClipToRectangle.
+bool CircleInside(const Rect& rect, Vec2 centre, double radius) {
+  return std::min(centre.x - rect.x0, rect.x1 - centre.x) >= radius &&
+         std::min(centre.y - rect.y0, rect.y1 - centre.y) >= radius;
+}
+
 // Appends to `arcs` the arcs of the circle of radius `radius` about `centre`
 // that fall outside the half-open rectangle: beyond an edge at distance a
 // along outward normal n, the arc from a n - h n' to a n + h n'
 // (counterclockwise, n' = n turned left, h = sqrt(radius^2 - a^2)). Returns
 // false, appending nothing more, when the whole circle is outside.
-bool ClipToRectangle(const Rect& rect, Vec2 centre, double radius, std::vector<KeyArc>& arcs) {
-  // Most circles lie inside: four comparisons settle them.
-  if (std::min(centre.x - rect.x0, rect.x1 - centre.x) >= radius &&
-      std::min(centre.y - rect.y0, rect.y1 - centre.y) >= radius) {
-    return true;
-  }
+[[gnu::noinline]] bool ClipToRectangle(const Rect& rect, Vec2 centre, double radius,
+                                       std::vector<KeyArc>& arcs) {
+  if (CircleInside(rect, centre, radius)) return true;
   const struct {
     Vec2 normal;
     double distance;
@@ -170,7 +175,9 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
   // covered (F1 is continuous: an uncovered spot would put a spot at
   // distance exactly `spacing` from a point, on an unconsumed circle).
   const std::optional<Rect>& stop = problem.stop_when_covered;
-  auto reaches_stop = [&](Vec2 p) { return stop && SquaredDistance(*stop, p) <= spacing_squared; };
+  auto reaches_stop = [&](Vec2 p) {
+    return stop && SquaredDistanceInLanes(*stop, p) <= spacing_squared;
+  };
   int64_t pending_near_stop = 0;
   auto add_candidate = [&](int32_t index, Vec2 p) {
     grid.Insert(index, p);
@@ -232,7 +239,8 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
     pending_near_stop -= reaches_stop(p);
 
     outside_arcs.clear();
-    const bool inside = domain.torus || ClipToRectangle(domain.rect, p, spacing, outside_arcs);
+    const bool inside = domain.torus || CircleInside(domain.rect, p, spacing) ||
+                        ClipToRectangle(domain.rect, p, spacing, outside_arcs);
     nearby_count = grid.GatherNear(p, 2 * spacing, 4 * spacing_squared, index, nearby);
     if (inside && exclusions.empty()) {
       candidate_boundary.Build(p, outside_arcs, std::span(nearby.data(), nearby_count), boundary);

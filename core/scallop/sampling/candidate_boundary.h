@@ -56,7 +56,7 @@ inline void CandidateBoundary::Build(Vec2 centre, std::span<const KeyArc> other_
   uint64_t covered = covered_later;
   for (const KeyArc& arc : other_arcs) covered |= BinsOf(arc).covered;
   for (size_t n = 0; n < count; ++n) {
-    const ArcBins bins = bins_.Of(neighbours[n] - centre);
+    const ArcBins bins = bins_.Of(neighbours[n], centre);
     covered |= bins.covered;
     reached_[n] = bins.reached;
   }
