@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "encoded_points.h"
 #include "scallop/plane/layer_regions.h"
@@ -19,6 +20,21 @@
 #include "server/status_mapping.h"
 
 namespace scallop::server {
+namespace {
+
+// What VisitPoints calls: the appender's Append a point, and its AppendRun
+// (when it has one) for the points of a region wholly inside, in bulk.
+template <typename Appender>
+struct AppendTo {
+  Appender& appender;
+  void operator()(const Vec2& position, uint64_t id) const { appender.Append(position, id); }
+  void operator()(const Vec2* points, size_t count, uint64_t first_id) const requires requires {
+    appender.AppendRun(points, count, first_id);
+  }
+  { appender.AppendRun(points, count, first_id); }
+};
+
+}  // namespace
 
 grpc::ServerUnaryReactor* ScallopService::GetPoints(grpc::CallbackServerContext* context,
                                                     const grpc::ByteBuffer* request_bytes,
@@ -115,7 +131,7 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const GetPointsCall&
     total = VisitLayerPoints(
         parts, rect, offset, end,
         [&](const LayerRegions& part) { appender.StartLayer(part.layer); },
-        [&](const Vec2& position, uint64_t id) { appender.Append(position, id); });
+        AppendTo<std::remove_reference_t<decltype(appender)>>{appender});
   };
   std::optional<PackedAnswerWriter> packed;
   v1::GetPointsResponse message;

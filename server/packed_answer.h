@@ -35,6 +35,9 @@ class PackedAnswerWriter {
     ids_[count_] = id;
     ++count_;
   }
+  // points[0, count) with ids first_id + k, as `count` Appends would.
+  // REQUIRES: room for them.
+  void AppendRun(const Vec2* points, size_t count, uint64_t first_id);
   // The packed answer of a world without layers: nothing to record.
   void StartLayer(int /*layer*/) {}
   size_t count() const { return count_; }

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -90,6 +91,39 @@ TEST(PackedAnswerTest, WritesTheBytesProtobufWrites) {
       }
     }
   }
+}
+
+// AppendRun (a region's points in bulk) against the same points appended one
+// by one: runs of every length up to 9 (odd and even, for its two-at-a-time
+// copy) and longer, at every offset in the writer, in random chunks.
+TEST(PackedAnswerTest, RunsWriteWhatPointsOneByOneWrite) {
+  const std::string world = WorldToMessage(*World::Create({.seed = 7})).SerializeAsString();
+  for (const uint64_t seed : {1, 2, 3, 4, 5}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Rng rng(seed);
+    std::vector<Vec2> points(1000);
+    for (Vec2& p : points) p = {rng.Uniform(-1e6, 1e6), rng.Uniform(-1e6, 1e6)};
+    PackedAnswerWriter one_by_one(points.size());
+    PackedAnswerWriter in_runs(points.size());
+    uint64_t next_id = rng.NextBits() >> 1;
+    for (size_t start = 0; start < points.size();) {
+      const size_t count =
+          std::min(points.size() - start, rng.Below(4) == 0 ? 50 + rng.Below(200) : rng.Below(10));
+      for (size_t k = 0; k < count; ++k) one_by_one.Append(points[start + k], next_id + k);
+      in_runs.AppendRun(points.data() + start, count, next_id);
+      start += count;
+      next_id += count + rng.Below(3);  // a new region: ids jump
+    }
+    EXPECT_EQ(in_runs.count(), points.size());
+    EXPECT_EQ(Bytes(in_runs.Finish("", world)), Bytes(one_by_one.Finish("", world)));
+  }
+  // Planted: a run whose ids start one off.
+  PackedAnswerWriter one_by_one(3);
+  PackedAnswerWriter in_runs(3);
+  const Vec2 points[3] = {{1, 2}, {3, 4}, {5, 6}};
+  for (uint64_t k = 0; k < 3; ++k) one_by_one.Append(points[k], 10 + k);
+  in_runs.AppendRun(points, 3, 11);
+  EXPECT_NE(Bytes(in_runs.Finish("", world)), Bytes(one_by_one.Finish("", world)));
 }
 
 TEST(PackedAnswerTest, AnEmptyWorldMessageIsStillWritten) {

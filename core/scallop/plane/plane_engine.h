@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "scallop/base/status.h"
@@ -140,6 +141,9 @@ size_t VisitPointsInside(const std::vector<Vec2>& points, const Rect& rect, uint
 // CachedRegions of the same world and rect) that lie in `rect`, in query
 // order, skipping the first `begin` and stopping before index `end`; returns
 // how many lie in `rect` in all. Regions wholly inside are counted, not tested.
+// A `visit` that may also be called as visit(points, count, first_id) gets
+// the points it takes of a region wholly inside in one such call (points
+// [0, count), their ids first_id + k), which a writer can copy in bulk.
 template <typename Visit>
 size_t VisitPoints(const std::vector<RegionHandle>& regions, const RegionLayout& layout,
                    const Rect& rect, size_t begin, size_t end, Visit visit) {
@@ -152,7 +156,11 @@ size_t VisitPoints(const std::vector<RegionHandle>& regions, const RegionLayout&
     if (rect.x0 <= owned.x0 && owned.x1 <= rect.x1 && rect.y0 <= owned.y0 && owned.y1 <= rect.y1) {
       const size_t from = std::max(begin, index) - index;
       const size_t to = std::min(points.size(), end > index ? end - index : 0);
-      for (size_t k = from; k < to; ++k) visit(points[k], first_id + k);
+      if constexpr (std::is_invocable_v<Visit&, const Vec2*, size_t, uint64_t>) {
+        if (from < to) visit(points.data() + from, to - from, first_id + from);
+      } else {
+        for (size_t k = from; k < to; ++k) visit(points[k], first_id + k);
+      }
       index += points.size();
       continue;
     }
