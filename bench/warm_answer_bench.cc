@@ -147,13 +147,7 @@ void BM_WarmAnswerBytesPacked(benchmark::State& state) {
   TimeWarmTiles(state, [&](const auto& regions, const RegionLayout& layout, const Rect& rect,
                            size_t upper_bound) {
     server::PackedAnswerWriter writer(upper_bound);
-    struct {
-      server::PackedAnswerWriter& writer;
-      void operator()(const Vec2& p, uint64_t id) const { writer.Append(p, id); }
-      void operator()(const Vec2* run, size_t count, uint64_t first_id) const {
-        writer.AppendRun(run, count, first_id);
-      }
-    } visit{writer};
+    const server::AppendTo<server::PackedAnswerWriter> visit{writer};
     const size_t points = VisitPoints(regions, layout, rect, 0, SIZE_MAX, visit);
     grpc::ByteBuffer bytes = writer.Finish("", world_message);
     benchmark::DoNotOptimize(bytes);

@@ -20,21 +20,6 @@
 #include "server/status_mapping.h"
 
 namespace scallop::server {
-namespace {
-
-// What VisitPoints calls: the appender's Append a point, and its AppendRun
-// (when it has one) for the points of a region wholly inside, in bulk.
-template <typename Appender>
-struct AppendTo {
-  Appender& appender;
-  void operator()(const Vec2& position, uint64_t id) const { appender.Append(position, id); }
-  void operator()(const Vec2* points, size_t count, uint64_t first_id) const requires requires {
-    appender.AppendRun(points, count, first_id);
-  }
-  { appender.AppendRun(points, count, first_id); }
-};
-
-}  // namespace
 
 grpc::ServerUnaryReactor* ScallopService::GetPoints(grpc::CallbackServerContext* context,
                                                     const grpc::ByteBuffer* request_bytes,

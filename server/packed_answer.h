@@ -58,4 +58,17 @@ class PackedAnswerWriter {
   uint32_t count_ = 0;
 };
 
+// What VisitPoints calls for an appender (WritePoints' or this writer): its
+// Append a point, and when it has one its AppendRun for the points of a
+// region wholly inside, in bulk.
+template <typename Appender>
+struct AppendTo {
+  Appender& appender;
+  void operator()(const Vec2& position, uint64_t id) const { appender.Append(position, id); }
+  void operator()(const Vec2* points, size_t count, uint64_t first_id) const requires requires {
+    appender.AppendRun(points, count, first_id);
+  }
+  { appender.AppendRun(points, count, first_id); }
+};
+
 }  // namespace scallop::server
