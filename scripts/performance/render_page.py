@@ -399,10 +399,11 @@ def warm_answer(run):
     c, o = control["points_per_second"], ours["points_per_second"]
     return "".join([
         command_block(run, "warm_answer_bench"), "\n",
-        "What a warm GetPoints costs scallopd before gRPC serializes it: 256 random 64 d tiles\n"
+        "What a warm GetPoints costs scallopd before gRPC sends it: 256 random 64 d tiles\n"
         "of a warm 256 d square (the load benchmark's warm mode), each tile's cached regions\n"
-        "copied into a packed `Points` message as `AnswerGetPoints` does, by `VisitPoints`\n"
-        "(a branch-free filter of the regions the tile cuts) against the control in the same\n"
+        "copied into a packed `Points` message by `VisitPoints` (as `AnswerGetPoints` does for\n"
+        "the answers it does not write as bytes: radii, layers, encodings), a filter without\n"
+        "a branch of the regions the tile cuts, against the control in the same\n"
         "run: the same copy with a branch a point, as `VisitPoints` filtered before. CPU time,\n"
         "points a second of the answers.\n\n",
         "| copy | points/s | ns / point | against the control |\n", "|---|---|---|---|\n",
