@@ -2,11 +2,18 @@
 // as the request asks, docs/wire.md), with a tamper-evident token for the
 // next page. Answered on gRPC's thread when the rectangle's regions are all
 // cached, on the request pool otherwise.
+#include <grpcpp/impl/codegen/proto_utils.h>
+
 #include <algorithm>
+#include <memory>
+#include <optional>
+#include <string>
+#include <type_traits>
 
 #include "encoded_points.h"
 #include "scallop/plane/layer_regions.h"
 #include "server/layer_choice.h"
+#include "server/packed_answer.h"
 #include "server/region_warmup.h"
 #include "server/request_cost.h"
 #include "server/scallop_service.h"
@@ -15,28 +22,43 @@
 namespace scallop::server {
 
 grpc::ServerUnaryReactor* ScallopService::GetPoints(grpc::CallbackServerContext* context,
-                                                    const v1::GetPointsRequest* request,
-                                                    v1::GetPointsResponse* response) {
+                                                    const grpc::ByteBuffer* request_bytes,
+                                                    grpc::ByteBuffer* response) {
+  // Parsed as gRPC parses a typed method's request (an unparsable one ends
+  // with its status); kept with the world until the call ends.
+  auto call = std::make_shared<GetPointsCall>();
+  grpc::ByteBuffer bytes = *request_bytes;  // shares the slices; Deserialize consumes it
+  grpc::Status access =
+      grpc::SerializationTraits<v1::GetPointsRequest>::Deserialize(&bytes, &call->request);
+  int64_t cost = 1;  // a request the call will refuse costs nothing (request_cost.h)
+  if (access.ok()) access = shared_.Authorize(*context, call->request);
+  if (access.ok()) {
+    call->world_status = shared_.worlds.Resolve(call->request, call->world);
+    if (call->world_status.ok()) {
+      cost = RegionsCost(call->world.world, RectFromMessage(call->request.rect()));
+    }
+  }
   return RunUnaryInlineFirst(
-      context, "GetPoints", shared_.Authorize(*context, *request),
-      RequestCost(shared_.worlds, *request),
-      [this, request, response](RequestLog& log) {
-        return AnswerGetPoints(*request, *response, log, /*may_block=*/false);
+      context, "GetPoints", access, cost,
+      [this, &call = *call, response](RequestLog& log) {
+        return AnswerGetPoints(call, *response, log, /*may_block=*/false);
       },
-      [this, context, request, response](RequestLog& log) {
-        return *AnswerGetPoints(*request, *response, log, /*may_block=*/true,
-                                StopWhenGone(context));
+      [this, context, call, response](RequestLog& log) {
+        return *AnswerGetPoints(*call, *response, log, /*may_block=*/true, StopWhenGone(context));
       });
 }
 
-std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsRequest& request,
-                                                            v1::GetPointsResponse& response,
+std::optional<grpc::Status> ScallopService::AnswerGetPoints(const GetPointsCall& call,
+                                                            grpc::ByteBuffer& response,
                                                             RequestLog& log, bool may_block,
                                                             const std::function<bool()>& stop) {
-  World world;
+  if (!call.world_status.ok()) return call.world_status;
+  const v1::GetPointsRequest& request = call.request;
+  const World& world = call.world.world;
+  log.set_world(world, call.world.description);
   Rect rect;
-  if (grpc::Status status = shared_.ResolveQuery(request, shared_.config.max_query_area,
-                                                 "max_query_area", log, world, rect);
+  if (grpc::Status status = shared_.CheckQuery(request, world, shared_.config.max_query_area,
+                                               "max_query_area", log, rect);
       !status.ok()) {
     return status;
   }
@@ -80,32 +102,49 @@ std::optional<grpc::Status> ScallopService::AnswerGetPoints(const v1::GetPointsR
   } else {
     return std::nullopt;
   }
-  // Straight into the packed arrays (or the encoded regions), with room for
-  // the page: one copy.
+  // Straight into the answer's bytes (the common case: packed, neither radii
+  // nor layers) or into the message's arrays or encoded regions, with room
+  // for the page: one copy.
   size_t upper_bound = 0;
   for (const LayerRegions& part : parts) {
     for (const RegionHandle& region : part.regions) upper_bound += region->points.size();
   }
-  v1::Points& points = *response.mutable_points();
   const size_t end = offset + page_size;
+  const size_t capacity = std::min(upper_bound, page_size);
   size_t total = 0;
-  WritePoints(points, *encoding, world, std::min(upper_bound, page_size), [&](auto& appender) {
+  auto fill = [&](auto& appender) {
     total = VisitLayerPoints(
         parts, rect, offset, end,
         [&](const LayerRegions& part) { appender.StartLayer(part.layer); },
-        [&](const Vec2& position, uint64_t id) { appender.Append(position, id); });
-  });
+        AppendTo<std::remove_reference_t<decltype(appender)>>{appender});
+  };
+  std::optional<PackedAnswerWriter> packed;
+  v1::GetPointsResponse message;
+  if (*encoding == PointEncoding::kPacked && world.radius_field() == nullptr &&
+      world.layers() == nullptr) {
+    fill(packed.emplace(capacity));
+  } else {
+    WritePoints(*message.mutable_points(), *encoding, world, capacity, fill);
+  }
   if (offset > total) {
-    response.clear_points();
     return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                         "page_token: points beyond the end of the rectangle");
   }
-  if (end < total) {
-    response.set_next_page_token(shared_.page_tokens.Encode(world, rect, end, layers));
-  }
-  *response.mutable_world() = shared_.worlds.ToMessage(world);
+  const std::string next_page_token =
+      end < total ? shared_.page_tokens.Encode(world, rect, end, layers) : std::string();
   log.add_points(static_cast<int64_t>(std::min(total, end) - std::min(total, offset)));
-  return grpc::Status::OK;
+  if (packed) {
+    response =
+        call.world.message != nullptr
+            ? packed->Finish(next_page_token, *call.world.message)
+            : packed->Finish(next_page_token, shared_.worlds.ToMessage(world).SerializeAsString());
+    return grpc::Status::OK;
+  }
+  message.set_next_page_token(next_page_token);
+  *message.mutable_world() = shared_.worlds.ToMessage(world);
+  bool own_buffer = false;
+  return grpc::SerializationTraits<v1::GetPointsResponse>::Serialize(message, &response,
+                                                                     &own_buffer);
 }
 
 }  // namespace scallop::server

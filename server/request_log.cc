@@ -1,6 +1,7 @@
 // Request log lines, through spdlog (stderr).
 #include "server/request_log.h"
 
+#include <fmt/compile.h>
 #include <spdlog/spdlog.h>
 
 #include <iterator>
@@ -26,17 +27,21 @@ void RequestLog::Finish(const grpc::Status& status) const {
   } else if (world_) {
     world = described;
   }
+  // Compiled formats: parsing them a call was half the line's cost (callgrind).
   fmt::memory_buffer rect;
   if (rect_) {
-    fmt::format_to(std::back_inserter(rect), "[{},{})x[{},{})", rect_->x0, rect_->x1, rect_->y0,
-                   rect_->y1);
+    fmt::format_to(std::back_inserter(rect), FMT_COMPILE("[{},{})x[{},{})"), rect_->x0, rect_->x1,
+                   rect_->y0, rect_->y1);
   } else {
     rect.push_back('-');
   }
   const std::string_view rect_text(rect.data(), rect.size());
   if (status.ok()) {
-    spdlog::info("{} world=\"{}\" rect={} points={} ms={:.1f} code=OK", method_, world, rect_text,
-                 points_, milliseconds);
+    fmt::memory_buffer line;
+    fmt::format_to(std::back_inserter(line),
+                   FMT_COMPILE("{} world=\"{}\" rect={} points={} ms={:.1f} code=OK"), method_,
+                   world, rect_text, points_, milliseconds);
+    spdlog::info(std::string_view(line.data(), line.size()));  // as it is: no format
   } else {
     spdlog::warn("{} world=\"{}\" rect={} points={} ms={:.1f} code={} message=\"{}\"", method_,
                  world, rect_text, points_, milliseconds, StatusCodeName(status.error_code()),

@@ -45,41 +45,19 @@ grpc::ServerUnaryReactor* ScallopService::RunUnary(grpc::CallbackServerContext* 
       std::move(work));
 }
 
-grpc::ServerUnaryReactor* ScallopService::RunUnaryInlineFirst(grpc::CallbackServerContext* context,
-                                                              const char* method,
-                                                              const grpc::Status& access,
-                                                              int64_t cost, InlineWork quick,
-                                                              UnaryWork work) {
-  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-  auto log = std::make_shared<RequestLog>(method, shared_.metrics);
-  if (!access.ok()) {
-    log->Finish(access);
-    reactor->Finish(access);
-    return reactor;
-  }
-  std::string client;
-  if (grpc::Status status = shared_.Admit(*context, shared_.unary_in_flight, cost, client);
-      !status.ok()) {
-    log->Finish(status);
-    reactor->Finish(status);
-    return reactor;
-  }
-  if (std::optional<grpc::Status> status = quick(*log)) {
-    log->Finish(*status);
+void ScallopService::RunOnPool(grpc::CallbackServerContext* context,
+                               grpc::ServerUnaryReactor* reactor, RequestLog log,
+                               std::string client, int64_t cost, UnaryWork work) {
+  boost::asio::post(shared_.request_pool, [this, context, reactor, log = std::move(log),
+                                           client = std::move(client), cost,
+                                           work = std::move(work)]() mutable {
+    const grpc::Status status = context->IsCancelled()
+                                    ? grpc::Status(grpc::StatusCode::CANCELLED, "client cancelled")
+                                    : work(log);
+    log.Finish(status);
     shared_.unary_in_flight.Release(client, cost);
-    reactor->Finish(*status);
-    return reactor;
-  }
-  boost::asio::post(
-      shared_.request_pool, [this, context, reactor, log, client, cost, work = std::move(work)] {
-        const grpc::Status status =
-            context->IsCancelled() ? grpc::Status(grpc::StatusCode::CANCELLED, "client cancelled")
-                                   : work(*log);
-        log->Finish(status);
-        shared_.unary_in_flight.Release(client, cost);
-        reactor->Finish(status);
-      });
-  return reactor;
+    reactor->Finish(status);
+  });
 }
 
 }  // namespace scallop::server

@@ -14,7 +14,11 @@
 
 namespace scallop::server {
 
-class ScallopService final : public v1::Scallop::CallbackService {
+// GetPoints is served on raw bytes: its common answer is written straight
+// into the slices gRPC sends (packed_answer.h); its request is parsed and
+// checked as any other call's.
+class ScallopService final
+    : public v1::Scallop::WithRawCallbackMethod_GetPoints<v1::Scallop::CallbackService> {
  public:
   // All references must outlive the service; the pool must outlive every call.
   // `metrics` (may be null: not recorded) counts every finished call.
@@ -26,8 +30,8 @@ class ScallopService final : public v1::Scallop::CallbackService {
       : shared_(config, worlds, page_tokens, engine, request_pool, metrics, tokens) {}
 
   grpc::ServerUnaryReactor* GetPoints(grpc::CallbackServerContext* context,
-                                      const v1::GetPointsRequest* request,
-                                      v1::GetPointsResponse* response) override;
+                                      const grpc::ByteBuffer* request,
+                                      grpc::ByteBuffer* response) override;
   grpc::ServerWriteReactor<v1::PointsChunk>* StreamPoints(
       grpc::CallbackServerContext* context, const v1::StreamPointsRequest* request) override;
   grpc::ServerUnaryReactor* Verify(grpc::CallbackServerContext* context,
@@ -73,20 +77,66 @@ class ScallopService final : public v1::Scallop::CallbackService {
   // As RunUnary, but first tries `quick` on gRPC's own thread, and hands the
   // call to the request pool (`work`) only when `quick` returns nullopt. A
   // warm query is a copy of tens of microseconds; the hop to the pool and
-  // back costs more than that in context switches.
+  // back costs more than that in context switches. `quick` is called as
+  // InlineWork, `work` as UnaryWork, but neither is made a std::function
+  // (nor the log a shared object) unless the call goes to the pool: each
+  // was an allocation a warm call.
+  template <typename Quick, typename Work>
   grpc::ServerUnaryReactor* RunUnaryInlineFirst(grpc::CallbackServerContext* context,
                                                 const char* method, const grpc::Status& access,
-                                                int64_t cost, InlineWork quick, UnaryWork work);
+                                                int64_t cost, Quick quick, Work work);
+  // RunUnaryInlineFirst's second half: `work` on the request pool, then the
+  // log, the release of the admission and the end of the call.
+  void RunOnPool(grpc::CallbackServerContext* context, grpc::ServerUnaryReactor* reactor,
+                 RequestLog log, std::string client, int64_t cost, UnaryWork work);
 
-  // GetPoints' answer; with may_block false, nullopt when the rectangle's
-  // regions are not all cached (nothing is generated or waited on then).
-  // With may_block, generation stops early once `stop` returns true.
-  std::optional<grpc::Status> AnswerGetPoints(const v1::GetPointsRequest& request,
-                                              v1::GetPointsResponse& response, RequestLog& log,
-                                              bool may_block,
+  // A GetPoints call: its request, parsed from the raw bytes, and its world,
+  // resolved once for both the admission's cost and the answer.
+  struct GetPointsCall {
+    v1::GetPointsRequest request;
+    grpc::Status world_status;  // of resolving the request's world
+    ResolvedWorld world;        // when world_status is OK
+  };
+
+  // GetPoints' answer, serialized into `response`; with may_block false,
+  // nullopt when the rectangle's regions are not all cached (nothing is
+  // generated or waited on then). With may_block, generation stops early
+  // once `stop` returns true.
+  std::optional<grpc::Status> AnswerGetPoints(const GetPointsCall& call, grpc::ByteBuffer& response,
+                                              RequestLog& log, bool may_block,
                                               const std::function<bool()>& stop = nullptr);
 
   ServiceContext shared_;
 };
+
+template <typename Quick, typename Work>
+grpc::ServerUnaryReactor* ScallopService::RunUnaryInlineFirst(grpc::CallbackServerContext* context,
+                                                              const char* method,
+                                                              const grpc::Status& access,
+                                                              int64_t cost, Quick quick,
+                                                              Work work) {
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  RequestLog log(method, shared_.metrics);
+  if (!access.ok()) {
+    log.Finish(access);
+    reactor->Finish(access);
+    return reactor;
+  }
+  std::string client;
+  if (grpc::Status status = shared_.Admit(*context, shared_.unary_in_flight, cost, client);
+      !status.ok()) {
+    log.Finish(status);
+    reactor->Finish(status);
+    return reactor;
+  }
+  if (std::optional<grpc::Status> status = quick(log)) {
+    log.Finish(*status);
+    shared_.unary_in_flight.Release(client, cost);
+    reactor->Finish(*status);
+    return reactor;
+  }
+  RunOnPool(context, reactor, std::move(log), std::move(client), cost, UnaryWork(std::move(work)));
+  return reactor;
+}
 
 }  // namespace scallop::server

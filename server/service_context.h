@@ -84,6 +84,12 @@ class ServiceContext {
   grpc::Status ResolveQuery(const Request& request, double max_area, const char* limit_name,
                             RequestLog& log, World& world, Rect& rect) const {
     if (grpc::Status status = ResolveWorld(request, log, world); !status.ok()) return status;
+    return CheckQuery(request, world, max_area, limit_name, log, rect);
+  }
+  // ResolveQuery's rectangle part, for a call whose world is resolved already.
+  template <typename Request>
+  grpc::Status CheckQuery(const Request& request, const World& world, double max_area,
+                          const char* limit_name, RequestLog& log, Rect& rect) const {
     rect = RectFromMessage(request.rect());
     log.set_rect(rect);
     if (!request.has_rect()) {

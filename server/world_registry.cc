@@ -50,7 +50,8 @@ grpc::Status WorldRegistry::ResolveName(const std::string& name, ResolvedWorld& 
     return {grpc::StatusCode::NOT_FOUND, "world_name: no world named " + QuotedClientText(name) +
                                              " on this server (configured: " + known + ")"};
   }
-  resolved = {found->second, name, &descriptions_.at(name)};
+  const WorldTexts& texts = texts_.at(name);
+  resolved = {found->second, name, &texts.description, &texts.message};
   return grpc::Status::OK;
 }
 

@@ -27,6 +27,9 @@ struct ResolvedWorld {
   // it and outlives every call): a call's log line needs no formatting of
   // its world. Null for an inline world.
   const std::string* description = nullptr;
+  // A configured world's ToMessage, serialized once by the registry, for
+  // answers written as bytes (packed_answer.h). Null for an inline world.
+  const std::string* message = nullptr;
 };
 
 class WorldRegistry {
@@ -36,7 +39,9 @@ class WorldRegistry {
       : worlds_(std::move(worlds)),
         default_name_(std::move(default_name)),
         rasters_(std::move(rasters)) {
-    for (const auto& [name, world] : worlds_) descriptions_.emplace(name, world.Describe());
+    for (const auto& [name, world] : worlds_) {
+      texts_.emplace(name, WorldTexts{world.Describe(), ToMessage(world).SerializeAsString()});
+    }
   }
 
   // The request's world: INVALID_ARGUMENT naming the world.* field for a bad
@@ -78,7 +83,12 @@ class WorldRegistry {
   grpc::Status ResolveName(const std::string& name, ResolvedWorld& resolved) const;
 
   std::map<std::string, World> worlds_;
-  std::map<std::string, std::string> descriptions_;  // by name, as worlds_
+  // A configured world's texts, made once (ResolvedWorld says why).
+  struct WorldTexts {
+    std::string description;  // Describe()
+    std::string message;      // ToMessage, serialized
+  };
+  std::map<std::string, WorldTexts> texts_;  // by name, as worlds_
   std::string default_name_;
   RasterCatalog rasters_;
   // Serialized message -> world, and the keys oldest first.

@@ -93,6 +93,21 @@ TEST(PlaneVisitTest, WholePagesKeepExactlyThePointsOfTheHalfOpenRectangle) {
     EXPECT_EQ(counted, expected.ids.size()) << "trial " << trial;
     EXPECT_EQ(got.ids, expected.ids) << "trial " << trial;
     EXPECT_EQ(got.positions, expected.positions) << "trial " << trial;
+    // The same through a visitor that takes whole regions as runs.
+    Slice in_runs;
+    struct {
+      Slice& slice;
+      void operator()(const Vec2& p, uint64_t id) const {
+        slice.positions.push_back(p);
+        slice.ids.push_back(id);
+      }
+      void operator()(const Vec2* run, size_t count, uint64_t first_id) const {
+        for (size_t k = 0; k < count; ++k) (*this)(run[k], first_id + k);
+      }
+    } visit_runs{in_runs};
+    EXPECT_EQ(VisitPoints(*regions, RegionLayout(d), rect, 0, SIZE_MAX, visit_runs), counted);
+    EXPECT_EQ(in_runs.ids, expected.ids) << "trial " << trial;
+    EXPECT_EQ(in_runs.positions, expected.positions) << "trial " << trial;
     for (const RegionHandle& region : *regions) {
       for (const Vec2& p : region->points) {
         on_edges += p.x == rect.x0 || p.x == rect.x1 || p.y == rect.y0 || p.y == rect.y1;

@@ -4,10 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "scallop/plane/plane_engine.h"
+#include "scallop/random/rng.h"
 #include "tests/test_worlds.h"
 
 namespace scallop {
@@ -72,6 +76,88 @@ TEST(RegionCacheTest, StaysWithinItsByteBudget) {
     EXPECT_LE(engine.CacheStats().bytes, options.cache_bytes);
   }
   EXPECT_GT(engine.CacheStats().evictions, 0);
+}
+
+// PeekAll against a model of the cache (no eviction: a large budget): a map
+// from (world, key) to the region published. Three worlds, two of them equal
+// but made apart, so equal worlds must share entries and the third none.
+// Random publishes and PeekAlls of random key sets (seed printed).
+TEST(RegionCacheTest, PeekAllAnswersAsAModelOfTheCache) {
+  const World first = ValidWorld({.seed = 5});
+  const World twin = ValidWorld({.seed = 5});  // equal to `first`, another object
+  const World other = ValidWorld({.seed = 6});
+  const std::vector<const World*> worlds = {&first, &twin, &other};
+  // Model keys: the world's class (first and twin are one) and the region.
+  std::map<std::pair<int, RegionKey>, RegionHandle> stored;
+  for (const uint64_t seed : {1, 2, 3}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    RegionCache cache(int64_t{1} << 30);
+    stored.clear();
+    Rng rng(seed);
+    auto random_key = [&] {
+      return RegionKey{static_cast<int64_t>(rng.Below(6)) - 3, static_cast<int64_t>(rng.Below(6))};
+    };
+    for (int step = 0; step < 2000; ++step) {
+      const size_t w = rng.Below(worlds.size());
+      const World& world = *worlds[w];
+      const int world_class = w == 2 ? 1 : 0;
+      if (rng.Below(3) == 0) {
+        const RegionKey key = random_key();
+        RegionCache::Lookup lookup = cache.Acquire(world, key);
+        if (!lookup.must_generate) continue;  // stored already (a hit)
+        ASSERT_FALSE(stored.contains({world_class, key}));
+        auto region = std::make_shared<const RegionPoints>(
+            RegionPoints{key, {{rng.Uniform(), rng.Uniform()}}, 0, {}, {}});
+        cache.Publish(world, key, region);
+        stored[{world_class, key}] = region;
+        continue;
+      }
+      std::vector<RegionKey> keys(1 + rng.Below(5));
+      for (RegionKey& key : keys) key = random_key();
+      bool all_stored = true;
+      for (const RegionKey& key : keys) all_stored &= stored.contains({world_class, key});
+      const int64_t hits_before = cache.Stats().hits;
+      std::vector<RegionHandle> regions = {nullptr};  // PeekAll clears it
+      ASSERT_EQ(cache.PeekAll(world, keys, regions), all_stored) << "step " << step;
+      EXPECT_EQ(cache.Stats().hits - hits_before,
+                all_stored ? static_cast<int64_t>(keys.size()) : 0);
+      if (!all_stored) {
+        EXPECT_TRUE(regions.empty());
+        continue;
+      }
+      ASSERT_EQ(regions.size(), keys.size());
+      for (size_t k = 0; k < keys.size(); ++k) {
+        EXPECT_EQ(regions[k], stored.at({world_class, keys[k]})) << "step " << step;
+      }
+    }
+    EXPECT_EQ(cache.Stats().misses, static_cast<int64_t>(stored.size()));
+  }
+}
+
+// PeekAll neither waits on nor returns a region being generated, and the
+// regions it read are the most recently used: a publish over budget evicts
+// the others first.
+TEST(RegionCacheTest, PeekAllSkipsPendingRegionsAndRefreshesWhatItRead) {
+  const World world;
+  auto region_at = [](RegionKey key) {
+    return std::make_shared<const RegionPoints>(RegionPoints{key, {{0, 0}}, 0, {}, {}});
+  };
+  const int64_t one_region = static_cast<int64_t>(region_at({0, 0})->Bytes()) + 384;
+  RegionCache cache(3 * one_region);  // room for three
+  const std::vector<RegionKey> keys = {{0, 0}, {1, 0}, {2, 0}};
+  for (const RegionKey& key : keys) {
+    ASSERT_TRUE(cache.Acquire(world, key).must_generate);
+    cache.Publish(world, key, region_at(key));
+  }
+  std::vector<RegionHandle> regions;
+  ASSERT_TRUE(cache.Acquire(world, {3, 0}).must_generate);  // pending now
+  EXPECT_FALSE(cache.PeekAll(world, std::vector<RegionKey>{{0, 0}, {3, 0}}, regions));
+  // (0, 0) read last: (1, 0), the least recently used, goes when (3, 0) is published.
+  ASSERT_TRUE(cache.PeekAll(world, std::vector<RegionKey>{{2, 0}, {0, 0}}, regions));
+  cache.Publish(world, {3, 0}, region_at({3, 0}));
+  EXPECT_EQ(cache.Stats().evictions, 1);
+  EXPECT_TRUE(cache.PeekAll(world, std::vector<RegionKey>{{0, 0}, {2, 0}, {3, 0}}, regions));
+  EXPECT_FALSE(cache.PeekAll(world, std::vector<RegionKey>{{1, 0}}, regions));
 }
 
 }  // namespace

@@ -87,6 +87,21 @@ TEST(RequestLogTest, AnAnsweredCallsLineHoldsEveryField) {
   EXPECT_EQ(std::count(line.begin(), line.end(), '\n'), 1) << line;
 }
 
+// The line is formatted once, by the log itself: braces in its text (here
+// the method's name) reach the log as they are, never read as a format.
+TEST(RequestLogTest, TheLineIsNotFormattedTwice) {
+  std::ostringstream out;
+  {
+    const CapturedLog captured(out, spdlog::level::info);
+    RequestLog log("Get{}Points{:x}");
+    log.set_rect({0, 0, 1e-300, 1e300});
+    log.Finish(grpc::Status::OK);
+  }
+  EXPECT_NE(out.str().find("[info] Get{}Points{:x} world=\"-\" rect=[0,1e-300)x[0,1e+300) "),
+            std::string::npos)
+      << out.str();
+}
+
 // A configured world's line uses the description the registry made once; an
 // inline world's is made when the line is written; both are Describe()'s.
 TEST(RequestLogTest, ConfiguredAndInlineWorldsAreDescribedAlike) {

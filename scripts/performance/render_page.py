@@ -415,15 +415,33 @@ def warm_answer(run):
     c, o = control["points_per_second"], ours["points_per_second"]
     return "".join([
         command_block(run, "warm_answer_bench"), "\n",
-        "What a warm GetPoints costs scallopd before gRPC serializes it: 256 random 64 d tiles\n"
+        "What a warm GetPoints costs scallopd before gRPC sends it: 256 random 64 d tiles\n"
         "of a warm 256 d square (the load benchmark's warm mode), each tile's cached regions\n"
-        "copied into a packed `Points` message as `AnswerGetPoints` does, by `VisitPoints`\n"
-        "(a branch-free filter of the regions the tile cuts) against the control in the same\n"
+        "copied into a packed `Points` message by `VisitPoints` (as `AnswerGetPoints` does for\n"
+        "the answers it does not write as bytes: radii, layers, encodings), a filter without\n"
+        "a branch of the regions the tile cuts, against the control in the same\n"
         "run: the same copy with a branch a point, as `VisitPoints` filtered before. CPU time,\n"
         "points a second of the answers.\n\n",
         "| copy | points/s | ns / point | against the control |\n", "|---|---|---|---|\n",
         f"| a branch a point (control) | {si(c)} | {1e9 / c:.2f} | 1 |\n",
-        f"| **`VisitPoints`** | {si(o)} | {1e9 / o:.2f} | **{ratio(o, c)}** |\n"])
+        f"| **`VisitPoints`** | {si(o)} | {1e9 / o:.2f} | **{ratio(o, c)}** |\n",
+        warm_answer_bytes(rows)])
+
+
+def warm_answer_bytes(rows):
+    message = rows.get("BM_WarmAnswerBytesThroughMessage")
+    packed = rows.get("BM_WarmAnswerBytesPacked")
+    if not (message and packed):
+        return ""
+    m, p = message["points_per_second"], packed["points_per_second"]
+    return "".join([
+        "\nThe whole answer's bytes, as gRPC sends them, the same tiles in the same run: the copy\n"
+        "above into a `GetPointsResponse` serialized by protobuf (scallopd's way before issue\n"
+        "23's warm path) against `PackedAnswerWriter`, which writes the same bytes straight into\n"
+        "gRPC's slices, whole regions as runs (docs/design.md, \"The warm path\").\n\n",
+        "| the answer's bytes | points/s | ns / point | against the message |\n", "|---|---|---|---|\n",
+        f"| through the message (before) | {si(m)} | {1e9 / m:.2f} | 1 |\n",
+        f"| **`PackedAnswerWriter`** | {si(p)} | {1e9 / p:.2f} | **{ratio(p, m)}** |\n"])
 
 
 def http_tiles(run):

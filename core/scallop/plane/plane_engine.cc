@@ -139,11 +139,7 @@ std::optional<std::vector<RegionHandle>> PlaneEngine::CachedRegions(const World&
                                                                     const Rect& rect) {
   if (world.layers() != nullptr) return std::nullopt;
   std::vector<RegionHandle> regions;
-  for (const RegionKey& key : RegionsOverlapping(world, rect)) {
-    RegionHandle region = cache_.Peek(world, key);
-    if (!region) return std::nullopt;
-    regions.push_back(std::move(region));
-  }
+  if (!cache_.PeekAll(world, RegionsOverlapping(world, rect), regions)) return std::nullopt;
   return regions;
 }
 

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "scallop/base/status.h"
@@ -106,29 +108,38 @@ class PlaneEngine {
   std::unique_ptr<boost::asio::thread_pool> pool_;
 };
 
-// Calls visit(points[k], first_id + k) for the points of `points` that lie
-// in `rect`, in order; returns how many. The test has no branch: whether a
-// point of a region the rectangle cuts lies inside follows no pattern, and
-// mispredicting it was most of a warm tile's copy (docs/performance.md).
-template <typename Visit>
-size_t VisitPointsInside(const std::vector<Vec2>& points, const Rect& rect, uint64_t first_id,
-                         Visit& visit) {
+// The sides of `rect` that cut into a region owning `owned` (bit 0: x0, 1: x1,
+// 2: y0, 3: y1): a region's points lie in what it owns, so only these sides
+// can leave one of them outside. 0 for a region wholly inside.
+inline int CuttingSides(const Rect& rect, const Rect& owned) {
+  return (owned.x0 < rect.x0 ? 1 : 0) | (rect.x1 < owned.x1 ? 2 : 0) |
+         (owned.y0 < rect.y0 ? 4 : 0) | (rect.y1 < owned.y1 ? 8 : 0);
+}
+
+// VisitPointsInside for a region that the sides kSides (CuttingSides) of
+// `rect` cut: only those sides are tested. A rectangle's edge crosses most
+// of the regions it cuts on one side only, so a point costs one comparison
+// there instead of four.
+template <int kSides, typename Visit>
+size_t VisitPointsInsideOf(const std::vector<Vec2>& points, const Rect& rect, uint64_t first_id,
+                           Visit& visit) {
   // Indices kept, a chunk at a time, then visited: a loop without data-dependent branches.
   constexpr size_t kChunk = 256;
   uint32_t kept[kChunk];
-  // Both coordinates at once, in the two lanes of an SSE2 register.
-  using Doubles = double __attribute__((vector_size(16)));
-  using Bits = int64_t __attribute__((vector_size(16)));
-  const Doubles low = {rect.x0, rect.y0}, high = {rect.x1, rect.y1};
   size_t total = 0;
   for (size_t start = 0; start < points.size(); start += kChunk) {
     const size_t stop = std::min(points.size(), start + kChunk);
     size_t count = 0;
     for (size_t k = start; k < stop; ++k) {
-      const Doubles p = {points[k].x, points[k].y};
-      const Bits inside = (low <= p) & (p < high);
+      const Vec2 p = points[k];
+      // Each test a 0 or 1, combined by `&`: no branch.
+      size_t inside = 1;
+      if constexpr ((kSides & 1) != 0) inside &= static_cast<size_t>(rect.x0 <= p.x);
+      if constexpr ((kSides & 2) != 0) inside &= static_cast<size_t>(p.x < rect.x1);
+      if constexpr ((kSides & 4) != 0) inside &= static_cast<size_t>(rect.y0 <= p.y);
+      if constexpr ((kSides & 8) != 0) inside &= static_cast<size_t>(p.y < rect.y1);
       kept[count] = static_cast<uint32_t>(k);
-      count += static_cast<size_t>(inside[0] & inside[1] & 1);
+      count += inside;
     }
     for (size_t n = 0; n < count; ++n) visit(points[kept[n]], first_id + kept[n]);
     total += count;
@@ -136,10 +147,33 @@ size_t VisitPointsInside(const std::vector<Vec2>& points, const Rect& rect, uint
   return total;
 }
 
+// Calls visit(points[k], first_id + k) for the points of `points`, a region
+// owning `owned`, that lie in `rect`, in order; returns how many. The test
+// has no branch: whether a point of a region the rectangle cuts lies inside
+// follows no pattern, and mispredicting it was most of a warm tile's copy
+// (docs/performance.md).
+template <typename Visit>
+size_t VisitPointsInside(const std::vector<Vec2>& points, const Rect& rect, const Rect& owned,
+                         uint64_t first_id, Visit& visit) {
+  size_t total = 0;
+  const int sides = CuttingSides(rect, owned);
+  [&]<int... kSides>(std::integer_sequence<int, kSides...>) {
+    // The one instance whose sides these are (sides 0, a region wholly inside, tests nothing).
+    (void)((sides == kSides &&
+            (total = VisitPointsInsideOf<kSides>(points, rect, first_id, visit), true)) ||
+           ...);
+  }
+  (std::make_integer_sequence<int, 16>{});
+  return total;
+}
+
 // Calls visit(position, id) for the points of `regions` (Regions or
 // CachedRegions of the same world and rect) that lie in `rect`, in query
 // order, skipping the first `begin` and stopping before index `end`; returns
 // how many lie in `rect` in all. Regions wholly inside are counted, not tested.
+// A `visit` that may also be called as visit(points, count, first_id) gets
+// the points it takes of a region wholly inside in one such call (points
+// [0, count), their ids first_id + k), which a writer can copy in bulk.
 template <typename Visit>
 size_t VisitPoints(const std::vector<RegionHandle>& regions, const RegionLayout& layout,
                    const Rect& rect, size_t begin, size_t end, Visit visit) {
@@ -152,13 +186,17 @@ size_t VisitPoints(const std::vector<RegionHandle>& regions, const RegionLayout&
     if (rect.x0 <= owned.x0 && owned.x1 <= rect.x1 && rect.y0 <= owned.y0 && owned.y1 <= rect.y1) {
       const size_t from = std::max(begin, index) - index;
       const size_t to = std::min(points.size(), end > index ? end - index : 0);
-      for (size_t k = from; k < to; ++k) visit(points[k], first_id + k);
+      if constexpr (std::is_invocable_v<Visit&, const Vec2*, size_t, uint64_t>) {
+        if (from < to) visit(points.data() + from, to - from, first_id + from);
+      } else {
+        for (size_t k = from; k < to; ++k) visit(points[k], first_id + k);
+      }
       index += points.size();
       continue;
     }
     // The page takes every point of this region inside (the usual case).
     if (index >= begin && end >= index && end - index >= points.size()) {
-      index += VisitPointsInside(points, rect, first_id, visit);
+      index += VisitPointsInside(points, rect, owned, first_id, visit);
       continue;
     }
     for (size_t k = 0; k < points.size(); ++k) {

@@ -5,15 +5,14 @@
 
 namespace scallop {
 
-size_t RegionCache::KeyHash::operator()(const Key& k) const {
+size_t RegionCache::KeyHash::operator()(const KeyView& k) const {
   return HashWords({k.world.fingerprint(), static_cast<uint64_t>(k.region.i),
                     static_cast<uint64_t>(k.region.j)});
 }
 
 RegionCache::Lookup RegionCache::Acquire(const World& world, RegionKey key) {
-  const Key k{world, key};
   std::lock_guard lock(mutex_);
-  auto it = entries_.find(k);
+  auto it = entries_.find(KeyView{world, key});
   if (it != entries_.end()) {
     ++stats_.hits;
     Entry& entry = it->second;
@@ -27,18 +26,26 @@ RegionCache::Lookup RegionCache::Acquire(const World& world, RegionKey key) {
   Entry entry;
   entry.promise = std::make_shared<std::promise<RegionHandle>>();
   entry.future = entry.promise->get_future().share();
-  entries_.emplace(k, std::move(entry));
+  entries_.emplace(Key{world, key}, std::move(entry));
   return {nullptr, {}, true};
 }
 
-RegionHandle RegionCache::Peek(const World& world, RegionKey key) {
-  const Key k{world, key};
+bool RegionCache::PeekAll(const World& world, std::span<const RegionKey> keys,
+                          std::vector<RegionHandle>& regions) {
+  regions.clear();
+  regions.reserve(keys.size());
   std::lock_guard lock(mutex_);
-  auto it = entries_.find(k);
-  if (it == entries_.end() || !it->second.region) return nullptr;
-  ++stats_.hits;
-  lru_.splice(lru_.begin(), lru_, it->second.lru);
-  return it->second.region;
+  for (const RegionKey& key : keys) {
+    const auto it = entries_.find(KeyView{world, key});
+    if (it == entries_.end() || !it->second.region) {
+      regions.clear();
+      return false;
+    }
+    lru_.splice(lru_.begin(), lru_, it->second.lru);
+    regions.push_back(it->second.region);
+  }
+  stats_.hits += static_cast<int64_t>(keys.size());
+  return true;
 }
 
 void RegionCache::Publish(const World& world, RegionKey key, RegionHandle region) {

@@ -8,7 +8,9 @@
 #include <list>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <unordered_map>
+#include <vector>
 
 #include "scallop/plane/region_generator.h"
 #include "scallop/plane/world.h"
@@ -43,10 +45,15 @@ class RegionCache {
   // O(1) expected, under one mutex.
   Lookup Acquire(const World& world, RegionKey key);
 
-  // The region if it is stored (a hit, and most recently used now), else
-  // null with nothing registered or counted: for callers that must not
-  // block or generate, such as a server answering on its network thread.
-  RegionHandle Peek(const World& world, RegionKey key);
+  // True with `regions` (cleared first) holding the regions `keys` of
+  // `world`, in that order, when every one is stored: each a hit and most
+  // recently used now, the last key most of all. Else false with `regions`
+  // empty and nothing registered or counted (the keys before the missing
+  // one are most recently used, as the Acquire that follows makes them).
+  // For callers that must not block or generate, such as a server answering
+  // on its network thread. O(keys) expected, under one lock.
+  bool PeekAll(const World& world, std::span<const RegionKey> keys,
+               std::vector<RegionHandle>& regions);
 
   // Stores a region this thread was told to generate and wakes its waiters,
   // then evicts least recently used regions while over budget.
@@ -60,8 +67,24 @@ class RegionCache {
     RegionKey region;
     friend bool operator==(const Key&, const Key&) = default;
   };
+  // A key's parts by reference: what lookups hash and compare, so that a
+  // lookup copies no World (its spec and shared pointers).
+  struct KeyView {
+    const World& world;
+    RegionKey region;
+  };
   struct KeyHash {
-    size_t operator()(const Key& k) const;
+    using is_transparent = void;
+    size_t operator()(const Key& k) const { return (*this)(KeyView{k.world, k.region}); }
+    size_t operator()(const KeyView& k) const;
+  };
+  struct KeyEqual {
+    using is_transparent = void;
+    bool operator()(const Key& a, const Key& b) const { return a == b; }
+    bool operator()(const KeyView& a, const Key& b) const {
+      return a.region == b.region && a.world == b.world;
+    }
+    bool operator()(const Key& a, const KeyView& b) const { return (*this)(b, a); }
   };
   struct Entry {
     std::shared_ptr<std::promise<RegionHandle>> promise;  // set while generating
@@ -81,8 +104,9 @@ class RegionCache {
 
   const int64_t byte_budget_;
   mutable std::mutex mutex_;
-  std::unordered_map<Key, Entry, KeyHash> entries_;  // lookups only: order never reaches output
-  std::list<Key> lru_;                               // front: most recently used
+  // Lookups only: order never reaches output.
+  std::unordered_map<Key, Entry, KeyHash, KeyEqual> entries_;
+  std::list<Key> lru_;  // front: most recently used
   RegionCacheStats stats_;
 };
 

@@ -1,0 +1,74 @@
+// GetPoints' common answer (packed arrays, neither radii nor layers) written as
+// wire bytes straight into the slices gRPC sends: the points are copied once,
+// from the cached regions, instead of into a GetPointsResponse's arrays and
+// again by its serialization. The bytes are those protobuf writes for the
+// same message (tests/packed_answer_test.cc), so no client sees a difference.
+#pragma once
+
+#include <grpcpp/support/byte_buffer.h>
+#include <grpcpp/support/slice.h>
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "scallop/geometry/vec2.h"
+
+namespace scallop::server {
+
+// Packed doubles and fixed64 are little-endian on the wire, as in memory here.
+static_assert(std::endian::native == std::endian::little, "packed_answer.h copies raw words");
+
+// The appender WritePoints' callers fill (encoded_points.h): Append and StartLayer.
+// Not thread-safe; one answer per writer.
+class PackedAnswerWriter {
+ public:
+  // Room for `capacity` points: one allocation of 24 bytes a point.
+  explicit PackedAnswerWriter(size_t capacity);
+
+  // REQUIRES: fewer than `capacity` points appended so far.
+  void Append(Vec2 position, uint64_t id) {
+    xs_[count_] = position.x;
+    ys_[count_] = position.y;
+    ids_[count_] = id;
+    ++count_;
+  }
+  // points[0, count) with ids first_id + k, as `count` Appends would.
+  // REQUIRES: room for them.
+  void AppendRun(const Vec2* points, size_t count, uint64_t first_id);
+  // The packed answer of a world without layers: nothing to record.
+  void StartLayer(int /*layer*/) {}
+  size_t count() const { return count_; }
+
+  // The serialized GetPointsResponse {points {xs, ys, ids}, next_page_token,
+  // world} of the points appended, `world_message` being the serialized
+  // v1::World. The points' bytes are shared with the buffer, not copied.
+  grpc::ByteBuffer Finish(std::string_view next_page_token, std::string_view world_message) const;
+
+ private:
+  size_t capacity_;
+  grpc::Slice data_;  // xs, then ys, then ids, `capacity_` of each
+  double* xs_;
+  double* ys_;
+  uint64_t* ids_;
+  // Not size_t, for the reason PointsAppender gives (world_messages.h): a
+  // store to ids_ could alias it, and the copy would reload it a point.
+  uint32_t count_ = 0;
+};
+
+// What VisitPoints calls for an appender (WritePoints' or this writer): its
+// Append a point, and when it has one its AppendRun for the points of a
+// region wholly inside, in bulk.
+template <typename Appender>
+struct AppendTo {
+  Appender& appender;
+  void operator()(const Vec2& position, uint64_t id) const { appender.Append(position, id); }
+  void operator()(const Vec2* points, size_t count, uint64_t first_id) const requires requires {
+    appender.AppendRun(points, count, first_id);
+  }
+  { appender.AppendRun(points, count, first_id); }
+};
+
+}  // namespace scallop::server

@@ -1,0 +1,145 @@
+// GetPoints' packed answer written by hand (server/packed_answer.h) against
+// protobuf's own serialization of the same message: the same bytes for any
+// number of points (each size of the arrays' varint lengths), edge doubles,
+// with and without a page token, whatever room the writer was given beyond
+// its points; and a planted fault (one bit of one point) the check catches.
+#include "server/packed_answer.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "scallop/random/rng.h"
+#include "world_messages.h"
+
+namespace scallop::server {
+namespace {
+
+std::string Bytes(const grpc::ByteBuffer& buffer) {
+  std::vector<grpc::Slice> slices;
+  EXPECT_TRUE(buffer.Dump(&slices).ok());
+  std::string bytes;
+  for (const grpc::Slice& slice : slices) {
+    bytes.append(reinterpret_cast<const char*>(slice.begin()), slice.size());
+  }
+  return bytes;
+}
+
+// Doubles whose bits a careless copy could change: signed zero, subnormals, extremes.
+constexpr double kEdgeDoubles[] = {-0.0,
+                                   0.0,
+                                   std::numeric_limits<double>::denorm_min(),
+                                   -std::numeric_limits<double>::denorm_min(),
+                                   std::numeric_limits<double>::max(),
+                                   std::numeric_limits<double>::lowest(),
+                                   0x1.0p32,
+                                   -0x1.fffffffffffffp31};
+
+struct Answer {
+  std::string written;   // by PackedAnswerWriter
+  std::string expected;  // by protobuf, of the same GetPointsResponse
+};
+
+// `count` random points (edge doubles first) of seed `seed`, written both ways;
+// with `plant`, the writer's last point has one bit of x flipped.
+Answer WriteBothWays(uint64_t seed, size_t count, size_t spare, const std::string& token,
+                     const std::string& world, bool plant = false) {
+  Rng rng(seed);
+  PackedAnswerWriter writer(count + spare);
+  v1::GetPointsResponse response;
+  v1::Points& points = *response.mutable_points();
+  for (size_t k = 0; k < count; ++k) {
+    constexpr size_t kEdges = std::size(kEdgeDoubles);
+    const Vec2 position{k < kEdges ? kEdgeDoubles[k] : rng.Uniform(-1e9, 1e9),
+                        k < kEdges ? kEdgeDoubles[kEdges - 1 - k] : rng.Uniform(-1e-3, 1e-3)};
+    const uint64_t id = rng.NextBits();
+    points.add_xs(position.x);
+    points.add_ys(position.y);
+    points.add_ids(id);
+    Vec2 written = position;
+    if (plant && k + 1 == count) written.x = std::nextafter(written.x, INFINITY);
+    writer.Append(written, id);
+  }
+  EXPECT_EQ(writer.count(), count);
+  response.set_next_page_token(token);
+  EXPECT_TRUE(response.mutable_world()->ParseFromString(world));
+  return {Bytes(writer.Finish(token, world)), response.SerializeAsString()};
+}
+
+TEST(PackedAnswerTest, WritesTheBytesProtobufWrites) {
+  const std::string world =
+      WorldToMessage(*World::Create({.seed = 7, .min_distance = 0.5})).SerializeAsString();
+  // 8 n bytes an array: none (no field), then 1-, 2- and 3-byte varint lengths.
+  for (const size_t count : {size_t{0}, size_t{1}, size_t{3}, size_t{15}, size_t{16}, size_t{1000},
+                             size_t{2047}, size_t{2048}, size_t{20000}}) {
+    for (const size_t spare : {size_t{0}, size_t{5}}) {
+      // No token, a one-byte length, a two-byte length.
+      for (const size_t token_size : {size_t{0}, size_t{40}, size_t{200}}) {
+        const uint64_t seed = 1000 * count + 10 * spare + token_size;
+        SCOPED_TRACE("seed " + std::to_string(seed) + ", " + std::to_string(count) + " points");
+        const Answer answer =
+            WriteBothWays(seed, count, spare, std::string(token_size, 't'), world);
+        EXPECT_EQ(answer.written, answer.expected);
+        v1::GetPointsResponse parsed;
+        ASSERT_TRUE(parsed.ParseFromString(answer.written));
+        EXPECT_TRUE(parsed.has_points());
+        EXPECT_EQ(parsed.points().ids_size(), static_cast<int>(count));
+      }
+    }
+  }
+}
+
+// AppendRun (a region's points in bulk) against the same points appended one
+// by one: runs of every length up to 9 (odd and even, for its two-at-a-time
+// copy) and longer, at every offset in the writer, in random chunks.
+TEST(PackedAnswerTest, RunsWriteWhatPointsOneByOneWrite) {
+  const std::string world = WorldToMessage(*World::Create({.seed = 7})).SerializeAsString();
+  for (const uint64_t seed : {1, 2, 3, 4, 5}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Rng rng(seed);
+    std::vector<Vec2> points(1000);
+    for (Vec2& p : points) p = {rng.Uniform(-1e6, 1e6), rng.Uniform(-1e6, 1e6)};
+    PackedAnswerWriter one_by_one(points.size());
+    PackedAnswerWriter in_runs(points.size());
+    uint64_t next_id = rng.NextBits() >> 1;
+    for (size_t start = 0; start < points.size();) {
+      const size_t count =
+          std::min(points.size() - start, rng.Below(4) == 0 ? 50 + rng.Below(200) : rng.Below(10));
+      for (size_t k = 0; k < count; ++k) one_by_one.Append(points[start + k], next_id + k);
+      in_runs.AppendRun(points.data() + start, count, next_id);
+      start += count;
+      next_id += count + rng.Below(3);  // a new region: ids jump
+    }
+    EXPECT_EQ(in_runs.count(), points.size());
+    EXPECT_EQ(Bytes(in_runs.Finish("", world)), Bytes(one_by_one.Finish("", world)));
+  }
+  // Planted: a run whose ids start one off.
+  PackedAnswerWriter one_by_one(3);
+  PackedAnswerWriter in_runs(3);
+  const Vec2 points[3] = {{1, 2}, {3, 4}, {5, 6}};
+  for (uint64_t k = 0; k < 3; ++k) one_by_one.Append(points[k], 10 + k);
+  in_runs.AppendRun(points, 3, 11);
+  EXPECT_NE(Bytes(in_runs.Finish("", world)), Bytes(one_by_one.Finish("", world)));
+}
+
+TEST(PackedAnswerTest, AnEmptyWorldMessageIsStillWritten) {
+  // A world of all defaults serializes to nothing; the field is present all the same.
+  const Answer answer = WriteBothWays(3, 4, 0, "", "");
+  EXPECT_EQ(answer.written, answer.expected);
+}
+
+TEST(PackedAnswerTest, CatchesAPlantedFault) {
+  const std::string world = WorldToMessage(*World::Create({.seed = 7})).SerializeAsString();
+  for (const size_t count : {size_t{1}, size_t{20000}}) {
+    const Answer answer = WriteBothWays(count, count, 0, "", world, /*plant=*/true);
+    EXPECT_NE(answer.written, answer.expected) << count << " points";
+    EXPECT_EQ(answer.written.size(), answer.expected.size());
+  }
+}
+
+}  // namespace
+}  // namespace scallop::server
