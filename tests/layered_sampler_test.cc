@@ -166,6 +166,11 @@ TEST(LayeredSamplerTest, BadOptionsAreNamed) {
   bad.exclusions[5] = bad.exclusions[7] = -1.0;
   EXPECT_NE(message(bad).find("exclusions[5]: must be finite"), std::string::npos);
   bad = good;
+  bad.exclusions[1] = bad.exclusions[3] = 4 * 8 + 1;  // trees (8) and bushes (3): at most 32
+  EXPECT_NE(message(bad).find("exclusions[1]: at most 4 times"), std::string::npos);
+  bad.exclusions[1] = bad.exclusions[3] = 4 * 8;
+  EXPECT_TRUE(ValidateLayeredSamplerOptions(bad).ok());
+  bad = good;
   bad.exclusions.pop_back();
   EXPECT_NE(message(bad).find("exclusions: "), std::string::npos);
   EXPECT_FALSE(SampleLayers(bad).ok());

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "scallop/plane/layer_spec.h"
 #include "scallop/random/rng.h"
 #include "scallop/sampling/boundary_sampler.h"
 #include "scallop/sampling/field_sampler.h"
@@ -21,6 +22,10 @@ SamplerOptions ConstantLayerOptions(const Rect& domain, const BoundedLayer& laye
           .seed = layer.seed};
 }
 
+double LargestSpacing(const BoundedLayer& layer) {
+  return layer.field != nullptr ? layer.field->r_max() : layer.min_distance;
+}
+
 Status LedByLayer(size_t k, const Status& status) {
   return {status.code(), "layers[" + std::to_string(k) + "]: " + status.message()};
 }
@@ -35,8 +40,8 @@ Status ValidateOrder(const LayeredSamplerOptions& options) {
   for (size_t g = 0; g < n; ++g) {
     const int k = options.order[g];
     if (k < 0 || static_cast<size_t>(k) >= n || seen[static_cast<size_t>(k)]) {
-      return InvalidArgument("order[" + std::to_string(g) + "]: " + std::to_string(k) +
-                             " is not a layer not named before");
+      return InvalidArgument("order[" + std::to_string(g) + "]: must be a layer number below " +
+                             std::to_string(n) + " not named before, got " + std::to_string(k));
     }
     seen[static_cast<size_t>(k)] = true;
   }
@@ -59,6 +64,14 @@ Status ValidateExclusions(const LayeredSamplerOptions& options) {
       }
       if (distance != options.exclusions[b * n + a]) {
         return InvalidArgument(name + ": the matrix must be symmetric");
+      }
+      // As a world's matrix is bounded (kMaxExclusionInRMax): a disk far wider than the
+      // spacings would only cost, and its arcs' arithmetic must stay finite.
+      const double bound = kMaxExclusionInRMax * std::max(LargestSpacing(options.layers[a]),
+                                                          LargestSpacing(options.layers[b]));
+      if (distance > bound) {
+        return InvalidArgument(name + ": at most 4 times the larger spacing of its two layers (" +
+                               std::to_string(bound) + "), got " + std::to_string(distance));
       }
     }
   }

@@ -42,7 +42,8 @@ struct LayeredPoints {
 
 // Checks every field and returns a status naming the first bad one: INVALID_ARGUMENT for no
 // layers or more than 255 ("layers"), an order that is not a permutation ("order"), a matrix of
-// the wrong size or an entry that is negative, NaN, infinite or asymmetric ("exclusions[n]"),
+// the wrong size or an entry that is negative, NaN, infinite, asymmetric or above
+// kMaxExclusionInRMax times the larger of its two layers' largest spacings ("exclusions[n]"),
 // and what Sample (A3) or SampleField say of the domain and a layer's spacing, led by the layer
 // ("layers[2]: min_distance ..."); OUT_OF_RANGE as they give it.
 Status ValidateLayeredSamplerOptions(const LayeredSamplerOptions& options);
