@@ -230,10 +230,7 @@ CommandRunner RegisterGenerate(CLI::App& app) {
       "A world as YAML (the keys of a named world in scallopd's config), sampled on the domain "
       "alone: its layers, its field, or its algorithm and spacing, with its seed");
   file->type_name("FILE");
-  for (const char* option : {"--seed", "--min-distance", "--algorithm", "--density",
-                             "--radius-noise", "--radius-raster", "--layer", "--exclusion"}) {
-    if (CLI::Option* other = command->get_option_no_throw(option)) file->excludes(other);
-  }
+  ExcludeWorldOptions(*file, *command);
   return [arguments] { return RunGenerate(*arguments); };
 }
 

@@ -40,9 +40,13 @@ void AddWorldFileOption(CLI::App& command, WorldArguments& arguments) {
       "The world as YAML: the keys of a named world in scallopd's config (seed, min_distance, "
       "algorithm, density, radius_field, layers, exclusions); a raster_name is a PNG path "
       "relative to the file, or with --server the name of a raster the server loaded");
+  ExcludeWorldOptions(*file, command);
+}
+
+void ExcludeWorldOptions(CLI::Option& file, CLI::App& command) {
   for (const char* option : {"--seed", "--min-distance", "--algorithm", "--density",
                              "--radius-noise", "--radius-raster", "--layer", "--exclusion"}) {
-    if (CLI::Option* other = command.get_option_no_throw(option)) file->excludes(other);
+    if (CLI::Option* other = command.get_option_no_throw(option)) file.excludes(other);
   }
 }
 

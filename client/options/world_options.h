@@ -41,6 +41,10 @@ void AddWorldOptions(CLI::App& command, WorldArguments& arguments, bool with_rec
 // it; `analyze`, which takes the world options its own way, adds it after them).
 void AddWorldFileOption(CLI::App& command, WorldArguments& arguments);
 
+// Makes `file` (a --world-file option) exclude the world options `command` already has: the
+// file gives the whole world.
+void ExcludeWorldOptions(CLI::Option& file, CLI::App& command);
+
 struct WorldQuery {
   World world;
   Rect rect;

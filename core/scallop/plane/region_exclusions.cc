@@ -16,20 +16,19 @@ std::map<RegionKey, std::vector<ExclusionDisk>> RegionExclusions(const World& wo
   std::map<RegionKey, std::vector<ExclusionDisk>> result;
   if (keys.empty()) return result;
   const EarlierLayers& earlier = *world.earlier_layers();
+  // The sampled rectangles' bounds, and the block of region indices that holds the keys (for
+  // a dense table of the keys by place, below).
   Rect bounds = SampledRect(world, keys.front());
+  RegionRange key_range{keys.front(), keys.front()};
   for (const RegionKey& key : keys) {
     const Rect r = SampledRect(world, key);
     bounds = {std::min(bounds.x0, r.x0), std::min(bounds.y0, r.y0), std::max(bounds.x1, r.x1),
               std::max(bounds.y1, r.y1)};
-    result[key];
-  }
-  // The keys by place: a dense table over the block of region indices that holds them.
-  const RegionLayout own_layout(world);
-  RegionRange key_range{keys.front(), keys.front()};
-  for (const RegionKey& key : keys) {
     key_range.low = {std::min(key_range.low.i, key.i), std::min(key_range.low.j, key.j)};
     key_range.high = {std::max(key_range.high.i, key.i), std::max(key_range.high.j, key.j)};
+    result[key];
   }
+  const RegionLayout own_layout(world);
   const auto key_columns = static_cast<size_t>(key_range.high.i - key_range.low.i + 1);
   struct Target {
     std::vector<ExclusionDisk>* disks;
