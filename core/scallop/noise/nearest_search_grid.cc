@@ -159,7 +159,32 @@ struct SmallestKeys {
 };
 
 using Pair = double __attribute__((vector_size(16)));
+using PairBits = int64_t __attribute__((vector_size(16)));
+using PairCells = int32_t __attribute__((vector_size(8)));
 static_assert(sizeof(Pair) == sizeof(Vec2));
+
+SCALLOP_INLINE Pair Broadcast2(double value) { return Pair{value, value}; }
+
+// Whether both lanes of a comparison hold true. GCC 12 tests the lanes one
+// by one in six instructions where SSE2 has one.
+SCALLOP_INLINE bool BothLanes(PairBits mask) {
+#if defined(__SSE2__)
+  return __builtin_ia32_movmskpd(reinterpret_cast<Pair>(mask)) == 3;
+#else
+  return (mask[0] & mask[1]) != 0;
+#endif
+}
+
+// Both square roots in one instruction, correctly rounded as std::sqrt's
+// are; and without std::sqrt's test for a negative argument (errno), which
+// GCC 12 kept for a sum of squares.
+SCALLOP_INLINE Pair SquareRoots(Pair squares) {
+#if defined(__SSE2__)
+  return __builtin_ia32_sqrtpd(squares);
+#else
+  return Pair{std::sqrt(squares[0]), std::sqrt(squares[1])};
+#endif
+}
 
 bool CpuHasAvx2() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -212,10 +237,19 @@ NearestSearchGrid::NearestSearchGrid(double min_distance, RegionKey key,
     ys_[slot] = points[k].y;
     ids_[slot] = ids[k];
   }
+  long_block_.assign(kSide * kSide, 0);
+  for (int cy = 1; cy < kSide - 1; ++cy) {
+    for (int cx = 1; cx < kSide - 1; ++cx) {
+      for (int row = cy - 1; row <= cy + 1; ++row) {
+        const uint32_t run = cell_start_[row * kSide + cx + 2] - cell_start_[row * kSide + cx - 1];
+        if (run > kRunPoints) long_block_[cy * kSide + cx] = 1;
+      }
+    }
+  }
 }
 
 size_t NearestSearchGrid::Bytes() const {
-  return sizeof(*this) + cell_start_.capacity() * sizeof(uint32_t) +
+  return sizeof(*this) + cell_start_.capacity() * sizeof(uint32_t) + long_block_.capacity() +
          (xs_.capacity() + ys_.capacity()) * sizeof(double) + ids_.capacity() * sizeof(uint64_t);
 }
 
@@ -241,23 +275,23 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery*
   const double* const xs = xs_.data();
   const double* const ys = ys_.data();
   Keys px[kPositions], py[kPositions];
-  uint32_t first[kPositions][3], end[kPositions][3];
+  // Row r of query q's block starts at runs[q][r * kSide] and ends at runs[q][r * kSide + 3].
+  const uint32_t* runs[kPositions];
+  uint32_t first[kPositions][3];
   // Longer runs are rare (1% of rows): one branch for them all.
   bool long_run = false;
   for (int q = 0; q < kPositions; ++q) {
     px[q] = Broadcast<kLanes>(queries[q].p->x);
     py[q] = Broadcast<kLanes>(queries[q].p->y);
-    for (int r = 0; r < 3; ++r) {
-      const int row = queries[q].cy - 1 + r;
-      first[q][r] = cell_start_[row * kSide + queries[q].cx - 1];
-      end[q][r] = cell_start_[row * kSide + queries[q].cx + 2];
-      long_run |= end[q][r] - first[q][r] > kRunPoints;
-    }
+    runs[q] = cell_start_.data() + queries[q].cell - kSide - 1;
+    for (int r = 0; r < 3; ++r) first[q][r] = runs[q][r * kSide];
+    long_run |= long_block_[queries[q].cell] != 0;
   }
   // Several positions at once leave them to the one-position pass: its loop
   // here kept every position's keys in memory, not registers.
   if constexpr (kPositions > 1) {
-    if (long_run) [[unlikely]] return kAnswerEachAlone;
+    if (long_run) [[unlikely]]
+      return kAnswerEachAlone;
   }
   constexpr int kVectors = 3 * kRunPoints / kLanes;  // for the runs' first kRunPoints
   static_assert(kVectors >= 3);
@@ -274,7 +308,7 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery*
   if (long_run) [[unlikely]] {
     for (int q = 0; q < kPositions; ++q) {
       for (int r = 0; r < 3; ++r) {
-        for (uint32_t k = first[q][r] + kRunPoints; k < end[q][r]; k += kLanes)
+        for (uint32_t k = first[q][r] + kRunPoints; k < runs[q][r * kSide + 3]; k += kLanes)
           keys[q].Offer(KeysOf<kLanes>(xs, ys, px[q], py[q], k));
       }
     }
@@ -317,9 +351,40 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery*
 
 bool NearestSearchGrid::FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1,
                                               TwoNearest& best) const {
-  const BlockQuery query{&p, cx, cy, radius1, &best};
+  const BlockQuery query{&p, cy * kSide + cx, radius1, &best};
   return FindInBlocksQuickly<2, 1>(&query) != 0;
 }
+
+SCALLOP_INLINE bool NearestSearchGrid::LocateBlock(const Vec2& p, int& cell,
+                                                   double& radius1) const {
+  Pair position;
+  std::memcpy(&position, &p, sizeof(position));
+  const Pair g = (position - std::bit_cast<Pair>(origin_)) * Broadcast2(inverse_cell_);
+  if (!BothLanes((g >= Broadcast2(1)) & (g < Broadcast2(kSide - 1)))) return false;
+  // Exact, as Covered's terms are: c = floor(g) >= 1, so g - c (Sterbenz),
+  // 1 - (g - c) and 1 + either are multiples of g's ulp in [0, 2]. Then
+  // min(g - (c - 1), (c + 2) - g) over both axes is 1 + min(f, 1 - f).
+  const PairCells c = __builtin_convertvector(g, PairCells);
+  const Pair f = g - __builtin_convertvector(c, Pair);
+  const Pair rest = Broadcast2(1) - f;
+  const Pair nearer = f < rest ? f : rest;
+  radius1 = (1 + std::min(nearer[0], nearer[1])) * cell_ - slack_;
+  cell = c[1] * kSide + c[0];
+  return true;
+}
+
+namespace {
+// The basis from a certified quick pass, its square roots in one instruction.
+SCALLOP_INLINE void StoreBasis(const TwoNearest& best, NearestPoint& out) {
+  const Pair f = SquareRoots(Pair{best.squared1, best.squared2});
+  out = {.id = best.id1,
+         .position = best.point1,
+         .f1 = f[0],
+         .f2 = f[1],
+         .second_id = best.id2,
+         .cell_value = CellValue(best.id1)};
+}
+}  // namespace
 
 template <int kLanes>
 SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosition> positions,
@@ -330,21 +395,16 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosit
   for (; k + 2 <= count; k += 2) {
     const IndexedPosition& entry0 = positions[k];
     const IndexedPosition& entry1 = positions[k + 1];
-    const auto [gx0, gy0] = CellCoordinates(entry0.position);
-    const auto [gx1, gy1] = CellCoordinates(entry1.position);
-    if (!(quick_ && BlockInGrid(gx0, gy0) && BlockInGrid(gx1, gy1))) [[unlikely]] {
+    TwoNearest best[2];
+    BlockQuery queries[2] = {{&entry0.position, 0, 0, &best[0]},
+                             {&entry1.position, 0, 0, &best[1]}};
+    const bool located = LocateBlock(entry0.position, queries[0].cell, queries[0].radius1) &
+                         LocateBlock(entry1.position, queries[1].cell, queries[1].radius1);
+    if (!(quick_ && located)) [[unlikely]] {
       AnswerAlone(entry0, k, results, refused);
       AnswerAlone(entry1, k + 1, results, refused);
       continue;
     }
-    const int cx0 = static_cast<int>(gx0), cy0 = static_cast<int>(gy0);  // floor: all >= 1
-    const int cx1 = static_cast<int>(gx1), cy1 = static_cast<int>(gy1);
-    TwoNearest best[2];
-    const BlockQuery queries[2] = {
-        {&entry0.position, cx0, cy0, Covered(gx0, gy0, cx0 - 1, cx0 + 1, cy0 - 1, cy0 + 1),
-         &best[0]},
-        {&entry1.position, cx1, cy1, Covered(gx1, gy1, cx1 - 1, cx1 + 1, cy1 - 1, cy1 + 1),
-         &best[1]}};
     const unsigned certified = FindInBlocksQuickly<kLanes, 2>(queries);
     if (certified == kAnswerEachAlone) [[unlikely]] {
       AnswerAlone(entry0, k, results, refused);
@@ -352,12 +412,12 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosit
       continue;
     }
     if (certified & 1u) {
-      results[entry0.index] = ToNearestPoint(best[0]);
+      StoreBasis(best[0], results[entry0.index]);
     } else {
       AnswerExactly(entry0, k, results, refused);
     }
     if (certified & 2u) {
-      results[entry1.index] = ToNearestPoint(best[1]);
+      StoreBasis(best[1], results[entry1.index]);
     } else {
       AnswerExactly(entry1, k + 1, results, refused);
     }
@@ -405,7 +465,7 @@ void NearestSearchGrid::AnswerEachInTwoLanes(std::span<const IndexedPosition> po
 #if defined(__x86_64__) || defined(__i386__)
 __attribute__((target("avx2"))) bool NearestSearchGrid::FindInBlockInFourLanes(
     const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const {
-  const BlockQuery query{&p, cx, cy, radius1, &best};
+  const BlockQuery query{&p, cy * kSide + cx, radius1, &best};
   return FindInBlocksQuickly<4, 1>(&query) != 0;
 }
 

@@ -146,13 +146,17 @@ class NearestSearchGrid {
   // its answer is certified and free of near-ties; false sends the caller to
   // the exact scan. Inlined into the two entry points below, the second
   // compiled for AVX2.
-  // One position's phase 1: p's cell (cx, cy) and the radius its block covers.
+  // One position's phase 1: p's cell (row-major index) and the radius its block covers.
   struct BlockQuery {
     const Vec2* p;
-    int cx, cy;
+    int cell;
     double radius1;
     TwoNearest* best;
   };
+  // p's cell and the radius its 3x3 block covers (Covered), both axes at
+  // once in a lane pair, to the same bits; false when the block leaves the
+  // grid (BlockInGrid) or p is NaN.
+  bool LocateBlock(const Vec2& p, int& cell, double& radius1) const;
   // Bit q of the result: queries[q] is certified (kPositions of them side by
   // side); or, for several, kAnswerEachAlone: a row of a block is longer than
   // the pass reads, so each position wants the one-position pass.
@@ -197,8 +201,11 @@ class NearestSearchGrid {
   // cell, then a few far pads (.cc).
   std::vector<double> xs_, ys_;
   std::vector<uint64_t> ids_;  // ids_[k] is the id of point k
-  bool quick_ = false;         // point indices fit FindInBlockQuickly's keys
-  bool four_lanes_ = false;    // FindInBlockInFourLanes, not ...TwoLanes
+  // Per cell, 1 when a row of its 3x3 block holds more points than the
+  // quick pass reads (1% of rows): one load a position instead of three ends.
+  std::vector<uint8_t> long_block_;
+  bool quick_ = false;       // point indices fit FindInBlockQuickly's keys
+  bool four_lanes_ = false;  // FindInBlockInFourLanes, not ...TwoLanes
 };
 
 // Inline: one call per position, and a call kept `best` in memory between
