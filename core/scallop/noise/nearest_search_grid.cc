@@ -62,6 +62,40 @@ struct LaneTypes<4> {
   static constexpr Bits kIndex = {0, 1, 2, 3};
 };
 
+// The paired pass (FindPairQuickly) ranks floats: squared distances in cell
+// units from float cell coordinates, their low kPairIndexBits replaced by
+// the point's index. A grid's points are then at most 2^kPairIndexBits, pads
+// included (a maximal world's grid holds at most about 620: 484 cells at
+// the densest packing). Truncation leaves 13 bits: a key's value T and the
+// float distance F it came from have T <= F < T (1 + 2^-13).
+constexpr int kPairIndexBits = 10;
+constexpr uint32_t kPairIndexMask = (uint32_t{1} << kPairIndexBits) - 1;
+
+// Where the pads lie in cell units: farther than any block reaches, and a
+// float squared distance (2^81) far from overflowing.
+constexpr float kPadCell = 0x1.0p+40f;
+
+// kLanes float keys, the first half for one position and the second half for
+// the other of a pair: four lanes in SSE2, eight in AVX.
+template <int kLanes>
+struct PairLaneTypes;
+template <>
+struct PairLaneTypes<4> {
+  using Keys = float __attribute__((vector_size(16)));
+  using Bits = uint32_t __attribute__((vector_size(16)));
+  using Half = float __attribute__((vector_size(8)));
+  static constexpr Bits kIndex = {0, 1, 0, 1};
+};
+template <>
+struct PairLaneTypes<8> {
+  using Keys = float __attribute__((vector_size(32)));
+  using Bits = uint32_t __attribute__((vector_size(32)));
+  using Half = float __attribute__((vector_size(16)));
+  static constexpr Bits kIndex = {0, 1, 2, 3, 0, 1, 2, 3};
+};
+using Floats4 = float __attribute__((vector_size(16)));
+using Floats4Bits = uint32_t __attribute__((vector_size(16)));
+
 // Everything below is inlined into its caller, whatever the caller's target:
 // the four-lane code then compiles to AVX inside the AVX2 entry point only.
 // Hence no lambda, and no function without SCALLOP_INLINE, may take or
@@ -97,14 +131,67 @@ SCALLOP_INLINE typename LaneTypes<kLanes>::Keys KeysOf(const double* xs, const d
   return reinterpret_cast<Keys>((bits & ~kIndexMask) | (first + LaneTypes<kLanes>::kIndex));
 }
 
+// The float keys of a pair: points first_a .. first_a + kLanes / 2 - 1 about
+// (gx_a, gy_a) in the first half, first_b .. about (gx_b, gy_b) in the second.
+template <int kLanes>
+SCALLOP_INLINE typename PairLaneTypes<kLanes>::Keys PairKeysOf(
+    const float* gxs, const float* gys, typename PairLaneTypes<kLanes>::Keys gx,
+    typename PairLaneTypes<kLanes>::Keys gy, uint32_t first_a, uint32_t first_b,
+    typename PairLaneTypes<kLanes>::Bits index) {
+  using Types = PairLaneTypes<kLanes>;
+  using Keys = typename Types::Keys;
+  using Bits = typename Types::Bits;
+  typename Types::Half xa, xb, ya, yb;
+  std::memcpy(&xa, gxs + first_a, sizeof(xa));
+  std::memcpy(&xb, gxs + first_b, sizeof(xb));
+  std::memcpy(&ya, gys + first_a, sizeof(ya));
+  std::memcpy(&yb, gys + first_b, sizeof(yb));
+  Keys x, y;
+  if constexpr (kLanes == 4) {
+    x = __builtin_shufflevector(xa, xb, 0, 1, 2, 3);
+    y = __builtin_shufflevector(ya, yb, 0, 1, 2, 3);
+  } else {
+    x = __builtin_shufflevector(xa, xb, 0, 1, 2, 3, 4, 5, 6, 7);
+    y = __builtin_shufflevector(ya, yb, 0, 1, 2, 3, 4, 5, 6, 7);
+  }
+  const Keys dx = gx - x, dy = gy - y;
+  const auto bits = reinterpret_cast<Bits>(dx * dx + dy * dy);
+  return reinterpret_cast<Keys>((bits & ~kPairIndexMask) | index);
+}
+
+// The first points of a pair's three rows, {a0, a1, a2, 0, b0, b1, b2, 0},
+// and row kRow's broadcast to each position's half of kLanes lanes.
+using PairRows = uint32_t __attribute__((vector_size(32)));
+template <int kLanes, int kRow>
+SCALLOP_INLINE typename PairLaneTypes<kLanes>::Bits RowIndex(PairRows rows) {
+  constexpr int a = kRow, b = 4 + kRow;
+  if constexpr (kLanes == 4) {
+    return __builtin_shufflevector(rows, rows, a, a, b, b);
+  } else {
+    return __builtin_shufflevector(rows, rows, a, a, a, a, b, b, b, b);
+  }
+}
+
+// {a[0], b[0], a[h], b[h]} for h half the lanes: an unpack and, for eight
+// lanes, the two 128-bit halves side by side (no lane-crossing permute).
+template <typename Keys>
+SCALLOP_INLINE Floats4 FirstLanesOfHalves(Keys a, Keys b) {
+  if constexpr (sizeof(Keys) == 16) {
+    return __builtin_shufflevector(a, b, 0, 4, 2, 6);
+  } else {
+    const Keys unpacked = __builtin_shufflevector(a, b, 0, 8, 1, 9, 4, 12, 5, 13);
+    return __builtin_shufflevector(unpacked, unpacked, 0, 1, 4, 5);
+  }
+}
+
 // The three smallest keys offered to each lane, in order. Non-negative
 // finite doubles order as their bits do, and `a < b ? a : b` is minpd: keys
 // are ranked as doubles, without branching on the data. Every min and max
 // takes two variables: with a constant operand GCC 12 built compare-and-blend
 // sequences instead.
-template <int kLanes>
+template <typename Keys>
 struct SmallestKeys {
-  using Keys = typename LaneTypes<kLanes>::Keys;
+  static constexpr int kLanes = sizeof(Keys) / sizeof(Keys{}[0]);
   Keys first, second, third;
 
   SCALLOP_INLINE void Start(Keys a, Keys b, Keys c) { Sort(a, b, c); }
@@ -117,11 +204,13 @@ struct SmallestKeys {
     third = Min(third, high2);
   }
 
-  // Lane 0 gets the three smallest of all lanes.
-  SCALLOP_INLINE void MergeAllLanes() {
-    static_assert(kLanes == 2 || kLanes == 4);
+  // The first lane of each group of kGroup lanes gets the three smallest of
+  // its group: all lanes for one position's keys, half of them for a pair's.
+  template <int kGroup>
+  SCALLOP_INLINE void MergeGroupsOf() {
+    static_assert(kGroup == 2 || kGroup == 4);
     MergeLanes<1>();
-    if constexpr (kLanes == 4) MergeLanes<2>();
+    if constexpr (kGroup == 4) MergeLanes<2>();
   }
 
  private:
@@ -165,6 +254,12 @@ static_assert(sizeof(Pair) == sizeof(Vec2));
 
 SCALLOP_INLINE Pair Broadcast2(double value) { return Pair{value, value}; }
 
+// Both positions of a pair, x and y: AVX lanes, or two SSE2 registers.
+using Quad = double __attribute__((vector_size(32)));
+using QuadBits = int64_t __attribute__((vector_size(32)));
+using QuadCells = int32_t __attribute__((vector_size(16)));
+SCALLOP_INLINE Quad Broadcast4(double value) { return Quad{value, value, value, value}; }
+
 // Whether both lanes of a comparison hold true. GCC 12 tests the lanes one
 // by one in six instructions where SSE2 has one.
 SCALLOP_INLINE bool BothLanes(PairBits mask) {
@@ -172,6 +267,17 @@ SCALLOP_INLINE bool BothLanes(PairBits mask) {
   return __builtin_ia32_movmskpd(reinterpret_cast<Pair>(mask)) == 3;
 #else
   return (mask[0] & mask[1]) != 0;
+#endif
+}
+
+// Bit k: lane k of a comparison of four floats holds true.
+SCALLOP_INLINE unsigned LanesSet(Floats4Bits mask) {
+#if defined(__SSE2__)
+  return static_cast<unsigned>(__builtin_ia32_movmskps(reinterpret_cast<Floats4>(mask)));
+#else
+  unsigned bits = 0;
+  for (int lane = 0; lane < 4; ++lane) bits |= (mask[lane] != 0 ? 1u : 0u) << lane;
+  return bits;
 #endif
 }
 
@@ -228,7 +334,10 @@ NearestSearchGrid::NearestSearchGrid(double min_distance, RegionKey key,
   xs_.resize(cell_start_.back() + kRunPad, kPadCoordinate);
   ys_.resize(cell_start_.back() + kRunPad, kPadCoordinate);
   ids_.resize(cell_start_.back() + kRunPad, 0);
+  cell_xs_.resize(cell_start_.back() + kRunPad, kPadCell);
+  cell_ys_.resize(cell_start_.back() + kRunPad, kPadCell);
   quick_ = ids_.size() <= kIndexMask + 1;
+  paired_ = ids_.size() <= kPairIndexMask + 1;
   // Stable within a cell (input order), so a grid is a pure function of its input.
   for (size_t k = 0; k < points.size(); ++k) {
     if (cell_of[k] < 0) continue;
@@ -236,6 +345,9 @@ NearestSearchGrid::NearestSearchGrid(double min_distance, RegionKey key,
     xs_[slot] = points[k].x;
     ys_[slot] = points[k].y;
     ids_[slot] = ids[k];
+    // CellCoordinates' g, in [0, kSide) here, rounded to float.
+    cell_xs_[slot] = static_cast<float>((points[k].x - origin_.x) * inverse_cell_);
+    cell_ys_[slot] = static_cast<float>((points[k].y - origin_.y) * inverse_cell_);
   }
   long_block_.assign(kSide * kSide, 0);
   for (int cy = 1; cy < kSide - 1; ++cy) {
@@ -250,7 +362,9 @@ NearestSearchGrid::NearestSearchGrid(double min_distance, RegionKey key,
 
 size_t NearestSearchGrid::Bytes() const {
   return sizeof(*this) + cell_start_.capacity() * sizeof(uint32_t) + long_block_.capacity() +
-         (xs_.capacity() + ys_.capacity()) * sizeof(double) + ids_.capacity() * sizeof(uint64_t);
+         (xs_.capacity() + ys_.capacity()) * sizeof(double) +
+         (cell_xs_.capacity() + cell_ys_.capacity()) * sizeof(float) +
+         ids_.capacity() * sizeof(uint64_t);
 }
 
 void NearestSearchGrid::ScanRow(int row, int first, int last, const Vec2& p,
@@ -260,6 +374,23 @@ void NearestSearchGrid::ScanRow(int row, int first, int last, const Vec2& p,
     const Vec2 q = Point(k);
     OfferCandidate(SquaredDistanceFrom(p, q), ids_[k], q, best);
   }
+}
+
+SCALLOP_INLINE bool NearestSearchGrid::TakeFound(const BlockQuery& query, uint32_t i1,
+                                                 uint32_t i2) const {
+  const Vec2& p = *query.p;
+  TwoNearest& best = *query.best;
+  best.squared1 = SquaredDistanceFrom(p, Point(i1));
+  best.squared2 = SquaredDistanceFrom(p, Point(i2));
+  best.id1 = ids_[i1];
+  best.id2 = ids_[i2];
+  // Each point as one 16-byte store: the caller reads it so, and one built
+  // from two 8-byte stores would stall that read (no store forwarding).
+  const Pair point1 = {xs_[i1], ys_[i1]}, point2 = {xs_[i2], ys_[i2]};
+  best.point1 = std::bit_cast<Vec2>(point1);
+  best.point2 = std::bit_cast<Vec2>(point2);
+  // Else phase 2 is needed (or a pad is among the two).
+  return best.squared2 <= query.radius1 * query.radius1;
 }
 
 template <int kLanes, int kPositions>
@@ -295,7 +426,7 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery*
   }
   constexpr int kVectors = 3 * kRunPoints / kLanes;  // for the runs' first kRunPoints
   static_assert(kVectors >= 3);
-  SmallestKeys<kLanes> keys[kPositions];
+  SmallestKeys<Keys> keys[kPositions];
   for (int q = 0; q < kPositions; ++q) {
     Keys fixed[kVectors];
     for (int v = 0; v < kVectors; ++v) {
@@ -315,7 +446,7 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery*
   }
   unsigned certified = 0;
   for (int q = 0; q < kPositions; ++q) {
-    keys[q].MergeAllLanes();
+    keys[q].template MergeGroupsOf<kLanes>();
     // Distinct truncated distances: the first key's point is strictly nearer
     // than every other point examined, and the second's strictly second (a
     // point examined twice would tie with itself). Ties by id cannot arise,
@@ -330,35 +461,90 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery*
     // whether or not the answer stands: no branch until the caller's.
     const auto i1 = static_cast<uint32_t>(key1 & kIndexMask);
     const auto i2 = static_cast<uint32_t>(key2 & kIndexMask);
-    const Vec2& p = *queries[q].p;
-    TwoNearest& best = *queries[q].best;
-    best.squared1 = SquaredDistanceFrom(p, Point(i1));
-    best.squared2 = SquaredDistanceFrom(p, Point(i2));
-    const double radius1 = queries[q].radius1;
-    // Else phase 2 is needed (or a pad is among the two).
-    const bool within = best.squared2 <= radius1 * radius1;
-    best.id1 = ids_[i1];
-    best.id2 = ids_[i2];
-    // Each point as one 16-byte store: the caller reads it so, and one built
-    // from two 8-byte stores would stall that read (no store forwarding).
-    const Pair point1 = {xs_[i1], ys_[i1]}, point2 = {xs_[i2], ys_[i2]};
-    best.point1 = std::bit_cast<Vec2>(point1);
-    best.point2 = std::bit_cast<Vec2>(point2);
+    const bool within = TakeFound(queries[q], i1, i2);
     certified |= static_cast<unsigned>(distinct & within) << q;
+  }
+  return certified;
+}
+
+template <int kLanes, typename CellFloats>
+SCALLOP_INLINE unsigned NearestSearchGrid::FindPairQuickly(const BlockQuery* queries,
+                                                           CellFloats g) const {
+  using Types = PairLaneTypes<kLanes>;
+  using Keys = typename Types::Keys;
+  constexpr int kHalf = kLanes / 2;  // lanes a position
+  static_assert(kRunPoints % kHalf == 0);
+  // As FindInBlocksQuickly, for a pair: the same points examined, and the
+  // same exact distances recomputed for the two found.
+  const uint32_t* runs[2];
+  uint32_t first[2][3];
+  for (int q = 0; q < 2; ++q) {
+    runs[q] = cell_start_.data() + queries[q].cell - kSide - 1;
+    for (int r = 0; r < 3; ++r) first[q][r] = runs[q][r * kSide];
+  }
+  if ((long_block_[queries[0].cell] | long_block_[queries[1].cell]) != 0) [[unlikely]] {
+    return kAnswerEachAlone;
+  }
+  // Each position's cell coordinates broadcast to its half.
+  Keys gx, gy;
+  if constexpr (kLanes == 4) {
+    gx = __builtin_shufflevector(g, g, 0, 0, 2, 2);
+    gy = __builtin_shufflevector(g, g, 1, 1, 3, 3);
+  } else {
+    gx = __builtin_shufflevector(g, g, 0, 0, 0, 0, 2, 2, 2, 2);
+    gy = __builtin_shufflevector(g, g, 1, 1, 1, 1, 3, 3, 3, 3);
+  }
+  // The rows' first points, each broadcast to its half by one in-lane shuffle.
+  const PairRows rows = {first[0][0], first[0][1], first[0][2], 0,
+                         first[1][0], first[1][1], first[1][2], 0};
+  constexpr int kParts = kRunPoints / kHalf;  // vectors a row
+  Keys fixed[3 * kParts];
+  const typename Types::Bits row_index[3] = {RowIndex<kLanes, 0>(rows) + Types::kIndex,
+                                             RowIndex<kLanes, 1>(rows) + Types::kIndex,
+                                             RowIndex<kLanes, 2>(rows) + Types::kIndex};
+  for (int r = 0; r < 3; ++r) {
+    for (int part = 0; part < kParts; ++part) {
+      fixed[r * kParts + part] = PairKeysOf<kLanes>(
+          cell_xs_.data(), cell_ys_.data(), gx, gy, first[0][r] + part * kHalf,
+          first[1][r] + part * kHalf, row_index[r] + static_cast<uint32_t>(part * kHalf));
+    }
+  }
+  SmallestKeys<Keys> keys;
+  keys.Start(fixed[0], fixed[1], fixed[2]);
+  for (int v = 3; v < 3 * kParts; ++v) keys.Offer(fixed[v]);
+  keys.template MergeGroupsOf<kHalf>();
+  // Lanes: position 0's first and second, position 1's first and second;
+  // and the same positions' second and third.
+  const Floats4 low = FirstLanesOfHalves(keys.first, keys.second);
+  const Floats4 high = FirstLanesOfHalves(keys.second, keys.third);
+  // Apart: high > low (1 + 2^-11) + 2^-11 on the truncated values, so the
+  // exact distances order as the keys do (docs/noise.md, "The paired pass").
+  const Floats4Bits low_bits = reinterpret_cast<Floats4Bits>(low);
+  const Floats4 low_value = reinterpret_cast<Floats4>(low_bits & ~kPairIndexMask);
+  const Floats4 high_value =
+      reinterpret_cast<Floats4>(reinterpret_cast<Floats4Bits>(high) & ~kPairIndexMask);
+  const Floats4 margin = {0x1.0p-11f, 0x1.0p-11f, 0x1.0p-11f, 0x1.0p-11f};
+  const Floats4 scale = {1 + 0x1.0p-11f, 1 + 0x1.0p-11f, 1 + 0x1.0p-11f, 1 + 0x1.0p-11f};
+  const unsigned apart = LanesSet(high_value > low_value * scale + margin);
+  const Floats4Bits index = low_bits & kPairIndexMask;
+  unsigned certified = 0;
+  for (int q = 0; q < 2; ++q) {
+    const bool within = TakeFound(queries[q], index[2 * q], index[2 * q + 1]);
+    const bool ordered = ((apart >> (2 * q)) & 3) == 3;
+    certified |= static_cast<unsigned>(ordered & within) << q;
   }
   return certified;
 }
 
 bool NearestSearchGrid::FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1,
                                               TwoNearest& best) const {
-  const BlockQuery query{&p, cy * kSide + cx, radius1, &best};
+  const BlockQuery query{.p = &p, .best = &best, .cell = cy * kSide + cx, .radius1 = radius1};
   return FindInBlocksQuickly<2, 1>(&query) != 0;
 }
 
-SCALLOP_INLINE bool NearestSearchGrid::LocateBlock(const Vec2& p, int& cell,
-                                                   double& radius1) const {
+SCALLOP_INLINE bool NearestSearchGrid::LocateBlock(BlockQuery& query) const {
   Pair position;
-  std::memcpy(&position, &p, sizeof(position));
+  std::memcpy(&position, query.p, sizeof(position));
   const Pair g = (position - std::bit_cast<Pair>(origin_)) * Broadcast2(inverse_cell_);
   if (!BothLanes((g >= Broadcast2(1)) & (g < Broadcast2(kSide - 1)))) return false;
   // Exact, as Covered's terms are: c = floor(g) >= 1, so g - c (Sterbenz),
@@ -368,8 +554,38 @@ SCALLOP_INLINE bool NearestSearchGrid::LocateBlock(const Vec2& p, int& cell,
   const Pair f = g - __builtin_convertvector(c, Pair);
   const Pair rest = Broadcast2(1) - f;
   const Pair nearer = f < rest ? f : rest;
-  radius1 = (1 + std::min(nearer[0], nearer[1])) * cell_ - slack_;
-  cell = c[1] * kSide + c[0];
+  query.radius1 = (1 + std::min(nearer[0], nearer[1])) * cell_ - slack_;
+  query.cell = c[1] * kSide + c[0];
+  return true;
+}
+
+template <typename CellFloats>
+SCALLOP_INLINE bool NearestSearchGrid::LocatePair(BlockQuery* queries, CellFloats& g_floats) const {
+  Pair a, b;
+  std::memcpy(&a, queries[0].p, sizeof(a));
+  std::memcpy(&b, queries[1].p, sizeof(b));
+  const Pair origin = std::bit_cast<Pair>(origin_);
+  const Quad g = (__builtin_shufflevector(a, b, 0, 1, 2, 3) -
+                  __builtin_shufflevector(origin, origin, 0, 1, 0, 1)) *
+                 Broadcast4(inverse_cell_);
+  const QuadBits inside = (g >= Broadcast4(1)) & (g < Broadcast4(kSide - 1));
+  if (!BothLanes(__builtin_shufflevector(inside, inside, 0, 1) &
+                 __builtin_shufflevector(inside, inside, 2, 3))) {
+    return false;
+  }
+  // As LocateBlock, lane by lane.
+  const QuadCells c = __builtin_convertvector(g, QuadCells);
+  const Quad f = g - __builtin_convertvector(c, Quad);
+  const Quad rest = Broadcast4(1) - f;
+  const Quad nearer = f < rest ? f : rest;
+  const Quad other = __builtin_shufflevector(nearer, nearer, 1, 0, 3, 2);
+  const Quad radius =
+      (Broadcast4(1) + (nearer < other ? nearer : other)) * Broadcast4(cell_) - Broadcast4(slack_);
+  for (int q = 0; q < 2; ++q) {
+    queries[q].radius1 = radius[2 * q];
+    queries[q].cell = c[2 * q + 1] * kSide + c[2 * q];
+  }
+  g_floats = __builtin_convertvector(g, CellFloats);
   return true;
 }
 
@@ -396,16 +612,15 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosit
     const IndexedPosition& entry0 = positions[k];
     const IndexedPosition& entry1 = positions[k + 1];
     TwoNearest best[2];
-    BlockQuery queries[2] = {{&entry0.position, 0, 0, &best[0]},
-                             {&entry1.position, 0, 0, &best[1]}};
-    const bool located = LocateBlock(entry0.position, queries[0].cell, queries[0].radius1) &
-                         LocateBlock(entry1.position, queries[1].cell, queries[1].radius1);
-    if (!(quick_ && located)) [[unlikely]] {
+    BlockQuery queries[2] = {{.p = &entry0.position, .best = &best[0], .cell = 0, .radius1 = 0},
+                             {.p = &entry1.position, .best = &best[1], .cell = 0, .radius1 = 0}};
+    Floats4 g;
+    if (!(paired_ && LocatePair(queries, g))) [[unlikely]] {
       AnswerAlone(entry0, k, results, refused);
       AnswerAlone(entry1, k + 1, results, refused);
       continue;
     }
-    const unsigned certified = FindInBlocksQuickly<kLanes, 2>(queries);
+    const unsigned certified = FindPairQuickly<2 * kLanes>(queries, g);
     if (certified == kAnswerEachAlone) [[unlikely]] {
       AnswerAlone(entry0, k, results, refused);
       AnswerAlone(entry1, k + 1, results, refused);
@@ -465,7 +680,7 @@ void NearestSearchGrid::AnswerEachInTwoLanes(std::span<const IndexedPosition> po
 #if defined(__x86_64__) || defined(__i386__)
 __attribute__((target("avx2"))) bool NearestSearchGrid::FindInBlockInFourLanes(
     const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const {
-  const BlockQuery query{&p, cy * kSide + cx, radius1, &best};
+  const BlockQuery query{.p = &p, .best = &best, .cell = cy * kSide + cx, .radius1 = radius1};
   return FindInBlocksQuickly<4, 1>(&query) != 0;
 }
 

@@ -149,20 +149,35 @@ class NearestSearchGrid {
   // One position's phase 1: p's cell (row-major index) and the radius its block covers.
   struct BlockQuery {
     const Vec2* p;
-    int cell;
-    double radius1;
     TwoNearest* best;
+    int cell = 0;
+    double radius1 = 0;
   };
-  // p's cell and the radius its 3x3 block covers (Covered), both axes at
+  // Fills query's cell and radius1 (Covered) for *query.p, both axes at
   // once in a lane pair, to the same bits; false when the block leaves the
   // grid (BlockInGrid) or p is NaN.
-  bool LocateBlock(const Vec2& p, int& cell, double& radius1) const;
+  bool LocateBlock(BlockQuery& query) const;
+  // LocateBlock for the two queries of a pair at once, false if either
+  // fails; g gets both positions' cell coordinates (CellCoordinates) as
+  // four floats, x and y of each.
+  template <typename CellFloats>
+  bool LocatePair(BlockQuery* queries, CellFloats& g) const;
   // Bit q of the result: queries[q] is certified (kPositions of them side by
   // side); or, for several, kAnswerEachAlone: a row of a block is longer than
   // the pass reads, so each position wants the one-position pass.
   static constexpr unsigned kAnswerEachAlone = 1u << 31;
   template <int kLanes, int kPositions>
   unsigned FindInBlocksQuickly(const BlockQuery* queries) const;
+  // A quick pass's two found, points i1 and i2 (in bounds: points or pads),
+  // into *query.best with their exact squared distances; whether the second
+  // lies within the radius the block covers.
+  bool TakeFound(const BlockQuery& query, uint32_t i1, uint32_t i2) const;
+  // Phase 1 for two positions at once, in float keys (kLanes of them, half
+  // a position's), where the three smallest of each are apart by more than
+  // the float rounding can blur; bits as FindInBlocksQuickly's (docs/noise.md,
+  // "The paired pass").
+  template <int kLanes, typename CellFloats>
+  unsigned FindPairQuickly(const BlockQuery* queries, CellFloats g) const;
   bool FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
   bool FindInBlockInFourLanes(const Vec2& p, int cx, int cy, double radius1,
                               TwoNearest& best) const;
@@ -200,11 +215,14 @@ class NearestSearchGrid {
   // The points' coordinates, apart so that four load at once: bucketed by
   // cell, then a few far pads (.cc).
   std::vector<double> xs_, ys_;
+  // The same points in cell units as floats (pads far), for FindPairQuickly.
+  std::vector<float> cell_xs_, cell_ys_;
   std::vector<uint64_t> ids_;  // ids_[k] is the id of point k
   // Per cell, 1 when a row of its 3x3 block holds more points than the
   // quick pass reads (1% of rows): one load a position instead of three ends.
   std::vector<uint8_t> long_block_;
   bool quick_ = false;       // point indices fit FindInBlockQuickly's keys
+  bool paired_ = false;      // and FindPairQuickly's
   bool four_lanes_ = false;  // FindInBlockInFourLanes, not ...TwoLanes
 };
 
