@@ -8,6 +8,8 @@
 #include <cstring>
 #include <utility>
 
+#include "scallop/noise/coordinate_pair.h"
+
 namespace scallop {
 namespace {
 
@@ -247,31 +249,14 @@ struct SmallestKeys {
   }
 };
 
-using Pair = double __attribute__((vector_size(16)));
-using PairBits = int64_t __attribute__((vector_size(16)));
-using PairCells = int32_t __attribute__((vector_size(8)));
-static_assert(sizeof(Pair) == sizeof(Vec2));
-
-SCALLOP_INLINE Pair Broadcast2(double value) { return Pair{value, value}; }
-
 // Both positions of a pair, x and y: AVX lanes, or two SSE2 registers.
 using Quad = double __attribute__((vector_size(32)));
 using QuadBits = int64_t __attribute__((vector_size(32)));
 using QuadCells = int32_t __attribute__((vector_size(16)));
 SCALLOP_INLINE Quad Broadcast4(double value) { return Quad{value, value, value, value}; }
 
-// Whether both lanes of a comparison hold true. GCC 12 tests the lanes one
-// by one in six instructions where SSE2 has one.
-SCALLOP_INLINE bool BothLanes(PairBits mask) {
-#if defined(__SSE2__)
-  return __builtin_ia32_movmskpd(reinterpret_cast<Pair>(mask)) == 3;
-#else
-  return (mask[0] & mask[1]) != 0;
-#endif
-}
-
 // Bit k: lane k of a comparison of four floats holds true.
-SCALLOP_INLINE unsigned LanesSet(Floats4Bits mask) {
+SCALLOP_INLINE unsigned FloatLanesSet(Floats4Bits mask) {
 #if defined(__SSE2__)
   return static_cast<unsigned>(__builtin_ia32_movmskps(reinterpret_cast<Floats4>(mask)));
 #else
@@ -525,7 +510,7 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindPairQuickly(const BlockQuery* que
       reinterpret_cast<Floats4>(reinterpret_cast<Floats4Bits>(high) & ~kPairIndexMask);
   const Floats4 margin = {0x1.0p-11f, 0x1.0p-11f, 0x1.0p-11f, 0x1.0p-11f};
   const Floats4 scale = {1 + 0x1.0p-11f, 1 + 0x1.0p-11f, 1 + 0x1.0p-11f, 1 + 0x1.0p-11f};
-  const unsigned apart = LanesSet(high_value > low_value * scale + margin);
+  const unsigned apart = FloatLanesSet(high_value > low_value * scale + margin);
   const Floats4Bits index = low_bits & kPairIndexMask;
   unsigned certified = 0;
   for (int q = 0; q < 2; ++q) {
@@ -543,9 +528,7 @@ bool NearestSearchGrid::FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, dou
 }
 
 SCALLOP_INLINE bool NearestSearchGrid::LocateBlock(BlockQuery& query) const {
-  Pair position;
-  std::memcpy(&position, query.p, sizeof(position));
-  const Pair g = (position - std::bit_cast<Pair>(origin_)) * Broadcast2(inverse_cell_);
+  const Pair g = (LoadPair(*query.p) - std::bit_cast<Pair>(origin_)) * Broadcast2(inverse_cell_);
   if (!BothLanes((g >= Broadcast2(1)) & (g < Broadcast2(kSide - 1)))) return false;
   // Exact, as Covered's terms are: c = floor(g) >= 1, so g - c (Sterbenz),
   // 1 - (g - c) and 1 + either are multiples of g's ulp in [0, 2]. Then
@@ -561,9 +544,7 @@ SCALLOP_INLINE bool NearestSearchGrid::LocateBlock(BlockQuery& query) const {
 
 template <typename CellFloats>
 SCALLOP_INLINE bool NearestSearchGrid::LocatePair(BlockQuery* queries, CellFloats& g_floats) const {
-  Pair a, b;
-  std::memcpy(&a, queries[0].p, sizeof(a));
-  std::memcpy(&b, queries[1].p, sizeof(b));
+  const Pair a = LoadPair(*queries[0].p), b = LoadPair(*queries[1].p);
   const Pair origin = std::bit_cast<Pair>(origin_);
   const Quad g = (__builtin_shufflevector(a, b, 0, 1, 2, 3) -
                   __builtin_shufflevector(origin, origin, 0, 1, 0, 1)) *
