@@ -386,8 +386,8 @@ StatusOr<NearestLookup::GridHandle> NearestLookup::Grid(const World& world, Regi
         {covered.x0 - d, covered.y0 - d, covered.x1 + d, covered.y1 + d}, layout.precision_limit());
     StatusOr<PlanePoints> points = engine_.Points(world, source);
     if (!points.ok()) return points.status();
-    grid.constant =
-        std::make_shared<const NearestSearchGrid>(d, region, points->positions, points->ids);
+    grid.constant = std::make_shared<const NearestSearchGrid>(
+        d, region, points->positions, points->ids, options_.first_pass_width);
   }
 
   std::lock_guard lock(mutex_);

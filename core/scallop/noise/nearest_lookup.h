@@ -31,6 +31,9 @@ struct NearestLookupOptions {
   // a field world's grid holds its region and margin, about 24 bytes a point).
   int64_t cache_bytes = int64_t{64} << 20;
   NearestMethod method = NearestMethod::kGrid;
+  // The grids' vector width (same answers either way): kTwoLanes runs the
+  // SSE2 code a CPU without AVX2 gets, for nearest_bench to measure that.
+  NearestSearchGrid::FirstPassWidth first_pass_width = NearestSearchGrid::FirstPassWidth::kWidest;
 };
 
 // Polled during long calls; true asks the call to stop with kCancelled (a
