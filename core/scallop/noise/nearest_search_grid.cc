@@ -378,78 +378,55 @@ SCALLOP_INLINE bool NearestSearchGrid::TakeFound(const BlockQuery& query, uint32
   return best.squared2 <= query.radius1 * query.radius1;
 }
 
-template <int kLanes, int kPositions>
-SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery* queries) const {
+template <int kLanes>
+SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const BlockQuery& query) const {
   using Keys = typename LaneTypes<kLanes>::Keys;
   static_assert(kRunPoints % kLanes == 0);
-  // Examines every point of each position's 3x3 block, and some beyond it
+  // Examines every point of the position's 3x3 block, and some beyond it
   // (later cells of a row, the far pads, possibly a point twice): extra
   // points are real, or farther than any block reaches, so they cannot make
-  // a wrong answer look right. Each step runs for every position before the
-  // next step: the positions' chains of dependent loads and compares are
-  // independent, and side by side the CPU overlaps them.
+  // a wrong answer look right.
   const double* const xs = xs_.data();
   const double* const ys = ys_.data();
-  Keys px[kPositions], py[kPositions];
-  // Row r of query q's block starts at runs[q][r * kSide] and ends at runs[q][r * kSide + 3].
-  const uint32_t* runs[kPositions];
-  uint32_t first[kPositions][3];
-  // Longer runs are rare (1% of rows): one branch for them all.
-  bool long_run = false;
-  for (int q = 0; q < kPositions; ++q) {
-    px[q] = Broadcast<kLanes>(queries[q].p->x);
-    py[q] = Broadcast<kLanes>(queries[q].p->y);
-    runs[q] = cell_start_.data() + queries[q].cell - kSide - 1;
-    for (int r = 0; r < 3; ++r) first[q][r] = runs[q][r * kSide];
-    long_run |= long_block_[queries[q].cell] != 0;
-  }
-  // Several positions at once leave them to the one-position pass: its loop
-  // here kept every position's keys in memory, not registers.
-  if constexpr (kPositions > 1) {
-    if (long_run) [[unlikely]]
-      return kAnswerEachAlone;
-  }
+  const Keys px = Broadcast<kLanes>(query.p->x), py = Broadcast<kLanes>(query.p->y);
+  // Row r of the block starts at runs[r * kSide] and ends at runs[r * kSide + 3].
+  const uint32_t* const runs = cell_start_.data() + query.cell - kSide - 1;
+  uint32_t first[3];
+  for (int r = 0; r < 3; ++r) first[r] = runs[r * kSide];
   constexpr int kVectors = 3 * kRunPoints / kLanes;  // for the runs' first kRunPoints
   static_assert(kVectors >= 3);
-  SmallestKeys<Keys> keys[kPositions];
-  for (int q = 0; q < kPositions; ++q) {
-    Keys fixed[kVectors];
-    for (int v = 0; v < kVectors; ++v) {
-      fixed[v] = KeysOf<kLanes>(xs, ys, px[q], py[q],
-                                first[q][v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
-    }
-    keys[q].Start(fixed[0], fixed[1], fixed[2]);
-    for (int v = 3; v < kVectors; ++v) keys[q].Offer(fixed[v]);
+  SmallestKeys<Keys> keys;
+  Keys fixed[kVectors];
+  for (int v = 0; v < kVectors; ++v) {
+    fixed[v] =
+        KeysOf<kLanes>(xs, ys, px, py, first[v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
   }
-  if (long_run) [[unlikely]] {
-    for (int q = 0; q < kPositions; ++q) {
-      for (int r = 0; r < 3; ++r) {
-        for (uint32_t k = first[q][r] + kRunPoints; k < runs[q][r * kSide + 3]; k += kLanes)
-          keys[q].Offer(KeysOf<kLanes>(xs, ys, px[q], py[q], k));
-      }
+  keys.Start(fixed[0], fixed[1], fixed[2]);
+  for (int v = 3; v < kVectors; ++v) keys.Offer(fixed[v]);
+  // Longer runs are rare (1% of rows).
+  if (long_block_[query.cell] != 0) [[unlikely]] {
+    for (int r = 0; r < 3; ++r) {
+      for (uint32_t k = first[r] + kRunPoints; k < runs[r * kSide + 3]; k += kLanes)
+        keys.Offer(KeysOf<kLanes>(xs, ys, px, py, k));
     }
   }
-  unsigned certified = 0;
-  for (int q = 0; q < kPositions; ++q) {
-    keys[q].template MergeGroupsOf<kLanes>();
-    // Distinct truncated distances: the first key's point is strictly nearer
-    // than every other point examined, and the second's strictly second (a
-    // point examined twice would tie with itself). Ties by id cannot arise,
-    // so the exact order by (squared, id) is this one. Otherwise (ties, or
-    // distances equal to 2^-36), the exact scan decides.
-    const auto key1 = std::bit_cast<uint64_t>(keys[q].first[0]);
-    const auto key2 = std::bit_cast<uint64_t>(keys[q].second[0]);
-    const auto key3 = std::bit_cast<uint64_t>(keys[q].third[0]);
-    const bool distinct = ((key1 >> kIndexBits) != (key2 >> kIndexBits)) &
-                          ((key2 >> kIndexBits) != (key3 >> kIndexBits));
-    // Every index is a point's or a pad's, so the reads below are in bounds
-    // whether or not the answer stands: no branch until the caller's.
-    const auto i1 = static_cast<uint32_t>(key1 & kIndexMask);
-    const auto i2 = static_cast<uint32_t>(key2 & kIndexMask);
-    const bool within = TakeFound(queries[q], i1, i2);
-    certified |= static_cast<unsigned>(distinct & within) << q;
-  }
-  return certified;
+  keys.template MergeGroupsOf<kLanes>();
+  // Distinct truncated distances: the first key's point is strictly nearer
+  // than every other point examined, and the second's strictly second (a
+  // point examined twice would tie with itself). Ties by id cannot arise,
+  // so the exact order by (squared, id) is this one. Otherwise (ties, or
+  // distances equal to 2^-36), the exact scan decides.
+  const auto key1 = std::bit_cast<uint64_t>(keys.first[0]);
+  const auto key2 = std::bit_cast<uint64_t>(keys.second[0]);
+  const auto key3 = std::bit_cast<uint64_t>(keys.third[0]);
+  const bool distinct = ((key1 >> kIndexBits) != (key2 >> kIndexBits)) &
+                        ((key2 >> kIndexBits) != (key3 >> kIndexBits));
+  // Every index is a point's or a pad's, so the reads below are in bounds
+  // whether or not the answer stands: no branch until the caller's.
+  const auto i1 = static_cast<uint32_t>(key1 & kIndexMask);
+  const auto i2 = static_cast<uint32_t>(key2 & kIndexMask);
+  const bool within = TakeFound(query, i1, i2);
+  return distinct & within;
 }
 
 template <int kLanes, typename CellFloats>
@@ -459,7 +436,7 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindPairQuickly(const BlockQuery* que
   using Keys = typename Types::Keys;
   constexpr int kHalf = kLanes / 2;  // lanes a position
   static_assert(kRunPoints % kHalf == 0);
-  // As FindInBlocksQuickly, for a pair: the same points examined, and the
+  // As FindInBlockQuickly, for a pair: the same points examined, and the
   // same exact distances recomputed for the two found.
   const uint32_t* runs[2];
   uint32_t first[2][3];
@@ -524,7 +501,7 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindPairQuickly(const BlockQuery* que
 bool NearestSearchGrid::FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1,
                                               TwoNearest& best) const {
   const BlockQuery query{.p = &p, .best = &best, .cell = cy * kSide + cx, .radius1 = radius1};
-  return FindInBlocksQuickly<2, 1>(&query) != 0;
+  return FindInBlockQuickly<2>(query);
 }
 
 SCALLOP_INLINE bool NearestSearchGrid::LocateBlock(BlockQuery& query) const {
@@ -662,7 +639,7 @@ void NearestSearchGrid::AnswerEachInTwoLanes(std::span<const IndexedPosition> po
 __attribute__((target("avx2"))) bool NearestSearchGrid::FindInBlockInFourLanes(
     const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const {
   const BlockQuery query{.p = &p, .best = &best, .cell = cy * kSide + cx, .radius1 = radius1};
-  return FindInBlocksQuickly<4, 1>(&query) != 0;
+  return FindInBlockQuickly<4>(query);
 }
 
 __attribute__((target("avx2"))) void NearestSearchGrid::AnswerEachInFourLanes(

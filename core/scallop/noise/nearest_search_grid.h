@@ -142,10 +142,6 @@ class NearestSearchGrid {
   double Covered(double gx, double gy, int x_lo, int x_hi, int y_lo, int y_hi) const;
   // Phases 1 and 2 with OfferCandidate: exact whatever the ties.
   bool FindTwoNearestExactly(const Vec2& p, double gx, double gy, TwoNearest& best) const;
-  // Phase 1 without branches on the data, kLanes keys at a time, for when
-  // its answer is certified and free of near-ties; false sends the caller to
-  // the exact scan. Inlined into the two entry points below, the second
-  // compiled for AVX2.
   // One position's phase 1: p's cell (row-major index) and the radius its block covers.
   struct BlockQuery {
     const Vec2* p;
@@ -162,20 +158,23 @@ class NearestSearchGrid {
   // four floats, x and y of each.
   template <typename CellFloats>
   bool LocatePair(BlockQuery* queries, CellFloats& g) const;
-  // Bit q of the result: queries[q] is certified (kPositions of them side by
-  // side); or, for several, kAnswerEachAlone: a row of a block is longer than
-  // the pass reads, so each position wants the one-position pass.
-  static constexpr unsigned kAnswerEachAlone = 1u << 31;
-  template <int kLanes, int kPositions>
-  unsigned FindInBlocksQuickly(const BlockQuery* queries) const;
+  // Phase 1 without branches on the data, kLanes double keys at a time, for
+  // when its answer is certified and free of near-ties; false sends the
+  // caller to the exact scan. Inlined into the entry points below (the
+  // four-lane ones compiled for AVX2).
+  template <int kLanes>
+  bool FindInBlockQuickly(const BlockQuery& query) const;
   // A quick pass's two found, points i1 and i2 (in bounds: points or pads),
   // into *query.best with their exact squared distances; whether the second
   // lies within the radius the block covers.
   bool TakeFound(const BlockQuery& query, uint32_t i1, uint32_t i2) const;
   // Phase 1 for two positions at once, in float keys (kLanes of them, half
-  // a position's), where the three smallest of each are apart by more than
-  // the float rounding can blur; bits as FindInBlocksQuickly's (docs/noise.md,
-  // "The paired pass").
+  // a position's), trusted where the three smallest of each are apart by
+  // more than float rounding can blur (docs/noise.md, "The paired pass").
+  // Bit q of the result: queries[q] is certified; or kAnswerEachAlone: a row
+  // of a block is longer than the pass reads, so each position wants the
+  // one-position pass.
+  static constexpr unsigned kAnswerEachAlone = 1u << 31;
   template <int kLanes, typename CellFloats>
   unsigned FindPairQuickly(const BlockQuery* queries, CellFloats g) const;
   bool FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
