@@ -64,7 +64,7 @@ struct LaneTypes<4> {
   static constexpr Bits kIndex = {0, 1, 2, 3};
 };
 
-// The paired pass (FindPairQuickly) ranks floats: squared distances in cell
+// The paired pass (FindPairsQuickly) ranks floats: squared distances in cell
 // units from float cell coordinates, their low kPairIndexBits replaced by
 // the point's index. A grid's points are then at most 2^kPairIndexBits, pads
 // included (a maximal world's grid holds at most about 620: 484 cells at
@@ -429,71 +429,79 @@ SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const BlockQuery& quer
   return distinct & within;
 }
 
-template <int kLanes, typename CellFloats>
-SCALLOP_INLINE unsigned NearestSearchGrid::FindPairQuickly(const BlockQuery* queries,
-                                                           CellFloats g) const {
+template <int kLanes, int kPairs, typename CellFloats>
+SCALLOP_INLINE unsigned NearestSearchGrid::FindPairsQuickly(const BlockQuery* queries,
+                                                            const CellFloats* g) const {
   using Types = PairLaneTypes<kLanes>;
   using Keys = typename Types::Keys;
   constexpr int kHalf = kLanes / 2;  // lanes a position
   static_assert(kRunPoints % kHalf == 0);
-  // As FindInBlockQuickly, for a pair: the same points examined, and the
-  // same exact distances recomputed for the two found.
-  const uint32_t* runs[2];
-  uint32_t first[2][3];
-  for (int q = 0; q < 2; ++q) {
-    runs[q] = cell_start_.data() + queries[q].cell - kSide - 1;
-    for (int r = 0; r < 3; ++r) first[q][r] = runs[q][r * kSide];
+  // As FindInBlockQuickly, for pairs: the same points examined, and the
+  // same exact distances recomputed for the two found. Each step runs for
+  // every pair before the next: the pairs' chains of dependent loads,
+  // minima and maxima are independent, and side by side the CPU overlaps them.
+  uint32_t first[2 * kPairs][3];
+  bool long_run = false;
+  for (int q = 0; q < 2 * kPairs; ++q) {
+    const uint32_t* runs = cell_start_.data() + queries[q].cell - kSide - 1;
+    for (int r = 0; r < 3; ++r) first[q][r] = runs[r * kSide];
+    long_run |= long_block_[queries[q].cell] != 0;
   }
-  if ((long_block_[queries[0].cell] | long_block_[queries[1].cell]) != 0) [[unlikely]] {
+  if (long_run) [[unlikely]]
     return kAnswerEachAlone;
-  }
-  // Each position's cell coordinates broadcast to its half.
-  Keys gx, gy;
-  if constexpr (kLanes == 4) {
-    gx = __builtin_shufflevector(g, g, 0, 0, 2, 2);
-    gy = __builtin_shufflevector(g, g, 1, 1, 3, 3);
-  } else {
-    gx = __builtin_shufflevector(g, g, 0, 0, 0, 0, 2, 2, 2, 2);
-    gy = __builtin_shufflevector(g, g, 1, 1, 1, 1, 3, 3, 3, 3);
-  }
-  // The rows' first points, each broadcast to its half by one in-lane shuffle.
-  const PairRows rows = {first[0][0], first[0][1], first[0][2], 0,
-                         first[1][0], first[1][1], first[1][2], 0};
   constexpr int kParts = kRunPoints / kHalf;  // vectors a row
-  Keys fixed[3 * kParts];
-  const typename Types::Bits row_index[3] = {RowIndex<kLanes, 0>(rows) + Types::kIndex,
-                                             RowIndex<kLanes, 1>(rows) + Types::kIndex,
-                                             RowIndex<kLanes, 2>(rows) + Types::kIndex};
-  for (int r = 0; r < 3; ++r) {
-    for (int part = 0; part < kParts; ++part) {
-      fixed[r * kParts + part] = PairKeysOf<kLanes>(
-          cell_xs_.data(), cell_ys_.data(), gx, gy, first[0][r] + part * kHalf,
-          first[1][r] + part * kHalf, row_index[r] + static_cast<uint32_t>(part * kHalf));
+  SmallestKeys<Keys> keys[kPairs];
+  for (int pair = 0; pair < kPairs; ++pair) {
+    // Each position's cell coordinates broadcast to its half.
+    const CellFloats gp = g[pair];
+    Keys gx, gy;
+    if constexpr (kLanes == 4) {
+      gx = __builtin_shufflevector(gp, gp, 0, 0, 2, 2);
+      gy = __builtin_shufflevector(gp, gp, 1, 1, 3, 3);
+    } else {
+      gx = __builtin_shufflevector(gp, gp, 0, 0, 0, 0, 2, 2, 2, 2);
+      gy = __builtin_shufflevector(gp, gp, 1, 1, 1, 1, 3, 3, 3, 3);
     }
+    // The rows' first points, each broadcast to its half by one in-lane shuffle.
+    const uint32_t(&a)[3] = first[2 * pair];
+    const uint32_t(&b)[3] = first[2 * pair + 1];
+    const PairRows rows = {a[0], a[1], a[2], 0, b[0], b[1], b[2], 0};
+    const typename Types::Bits row_index[3] = {RowIndex<kLanes, 0>(rows) + Types::kIndex,
+                                               RowIndex<kLanes, 1>(rows) + Types::kIndex,
+                                               RowIndex<kLanes, 2>(rows) + Types::kIndex};
+    Keys fixed[3 * kParts];
+    for (int r = 0; r < 3; ++r) {
+      for (int part = 0; part < kParts; ++part) {
+        fixed[r * kParts + part] = PairKeysOf<kLanes>(
+            cell_xs_.data(), cell_ys_.data(), gx, gy, a[r] + part * kHalf, b[r] + part * kHalf,
+            row_index[r] + static_cast<uint32_t>(part * kHalf));
+      }
+    }
+    keys[pair].Start(fixed[0], fixed[1], fixed[2]);
+    for (int v = 3; v < 3 * kParts; ++v) keys[pair].Offer(fixed[v]);
   }
-  SmallestKeys<Keys> keys;
-  keys.Start(fixed[0], fixed[1], fixed[2]);
-  for (int v = 3; v < 3 * kParts; ++v) keys.Offer(fixed[v]);
-  keys.template MergeGroupsOf<kHalf>();
-  // Lanes: position 0's first and second, position 1's first and second;
-  // and the same positions' second and third.
-  const Floats4 low = FirstLanesOfHalves(keys.first, keys.second);
-  const Floats4 high = FirstLanesOfHalves(keys.second, keys.third);
-  // Apart: high > low (1 + 2^-11) + 2^-11 on the truncated values, so the
-  // exact distances order as the keys do (docs/noise.md, "The paired pass").
-  const Floats4Bits low_bits = reinterpret_cast<Floats4Bits>(low);
-  const Floats4 low_value = reinterpret_cast<Floats4>(low_bits & ~kPairIndexMask);
-  const Floats4 high_value =
-      reinterpret_cast<Floats4>(reinterpret_cast<Floats4Bits>(high) & ~kPairIndexMask);
-  const Floats4 margin = {0x1.0p-11f, 0x1.0p-11f, 0x1.0p-11f, 0x1.0p-11f};
-  const Floats4 scale = {1 + 0x1.0p-11f, 1 + 0x1.0p-11f, 1 + 0x1.0p-11f, 1 + 0x1.0p-11f};
-  const unsigned apart = FloatLanesSet(high_value > low_value * scale + margin);
-  const Floats4Bits index = low_bits & kPairIndexMask;
+  for (int pair = 0; pair < kPairs; ++pair) keys[pair].template MergeGroupsOf<kHalf>();
   unsigned certified = 0;
-  for (int q = 0; q < 2; ++q) {
-    const bool within = TakeFound(queries[q], index[2 * q], index[2 * q + 1]);
-    const bool ordered = ((apart >> (2 * q)) & 3) == 3;
-    certified |= static_cast<unsigned>(ordered & within) << q;
+  for (int pair = 0; pair < kPairs; ++pair) {
+    // Lanes: position 0's first and second, position 1's first and second;
+    // and the same positions' second and third.
+    const Floats4 low = FirstLanesOfHalves(keys[pair].first, keys[pair].second);
+    const Floats4 high = FirstLanesOfHalves(keys[pair].second, keys[pair].third);
+    // Apart: high > low (1 + 2^-11) + 2^-11 on the truncated values, so the
+    // exact distances order as the keys do (docs/noise.md, "The paired pass").
+    const Floats4Bits low_bits = reinterpret_cast<Floats4Bits>(low);
+    const Floats4 low_value = reinterpret_cast<Floats4>(low_bits & ~kPairIndexMask);
+    const Floats4 high_value =
+        reinterpret_cast<Floats4>(reinterpret_cast<Floats4Bits>(high) & ~kPairIndexMask);
+    const Floats4 margin = {0x1.0p-11f, 0x1.0p-11f, 0x1.0p-11f, 0x1.0p-11f};
+    const Floats4 scale = {1 + 0x1.0p-11f, 1 + 0x1.0p-11f, 1 + 0x1.0p-11f, 1 + 0x1.0p-11f};
+    const unsigned apart = FloatLanesSet(high_value > low_value * scale + margin);
+    const Floats4Bits index = low_bits & kPairIndexMask;
+    for (int q = 0; q < 2; ++q) {
+      const bool within = TakeFound(queries[2 * pair + q], index[2 * q], index[2 * q + 1]);
+      const bool ordered = ((apart >> (2 * q)) & 3) == 3;
+      certified |= static_cast<unsigned>(ordered & within) << (2 * pair + q);
+    }
   }
   return certified;
 }
@@ -561,40 +569,65 @@ SCALLOP_INLINE void StoreBasis(const TwoNearest& best, NearestPoint& out) {
 }  // namespace
 
 template <int kLanes>
+SCALLOP_INLINE void NearestSearchGrid::Finish(std::span<const IndexedPosition> positions,
+                                              uint32_t k, const TwoNearest* best,
+                                              unsigned certified, uint32_t entries,
+                                              NearestPoint* results,
+                                              std::vector<uint32_t>& refused) const {
+  for (uint32_t q = 0; q < entries; ++q) {
+    if (certified & (1u << q)) {
+      StoreBasis(best[q], results[positions[k + q].index]);
+    } else {
+      AnswerExactly(positions[k + q], k + q, results, refused);
+    }
+  }
+}
+
+template <int kLanes>
+SCALLOP_INLINE void NearestSearchGrid::AnswerPair(std::span<const IndexedPosition> positions,
+                                                  uint32_t k, NearestPoint* results,
+                                                  std::vector<uint32_t>& refused) const {
+  TwoNearest best[2];
+  BlockQuery queries[2] = {{.p = &positions[k].position, .best = &best[0]},
+                           {.p = &positions[k + 1].position, .best = &best[1]}};
+  Floats4 g = {};
+  const unsigned certified = paired_ && LocatePair(queries, g)
+                                 ? FindPairsQuickly<2 * kLanes, 1>(queries, &g)
+                                 : kAnswerEachAlone;
+  if (certified == kAnswerEachAlone) [[unlikely]] {
+    AnswerAlone(positions[k], k, results, refused);
+    AnswerAlone(positions[k + 1], k + 1, results, refused);
+    return;
+  }
+  Finish<kLanes>(positions, k, best, certified, 2, results, refused);
+}
+
+template <int kLanes>
 SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosition> positions,
                                                     NearestPoint* results,
                                                     std::vector<uint32_t>& refused) const {
   const auto count = static_cast<uint32_t>(positions.size());
   uint32_t k = 0;
-  for (; k + 2 <= count; k += 2) {
-    const IndexedPosition& entry0 = positions[k];
-    const IndexedPosition& entry1 = positions[k + 1];
-    TwoNearest best[2];
-    BlockQuery queries[2] = {{.p = &entry0.position, .best = &best[0], .cell = 0, .radius1 = 0},
-                             {.p = &entry1.position, .best = &best[1], .cell = 0, .radius1 = 0}};
-    Floats4 g;
-    if (!(paired_ && LocatePair(queries, g))) [[unlikely]] {
-      AnswerAlone(entry0, k, results, refused);
-      AnswerAlone(entry1, k + 1, results, refused);
-      continue;
-    }
-    const unsigned certified = FindPairQuickly<2 * kLanes>(queries, g);
+  // Two pairs at once: each pair's pass is one chain of dependent steps, and
+  // two chains side by side keep the CPU busy where one waited (three spilled
+  // registers and lost a fifth).
+  for (; k + 4 <= count; k += 4) {
+    TwoNearest best[4];
+    BlockQuery queries[4];
+    for (int q = 0; q < 4; ++q) queries[q] = {.p = &positions[k + q].position, .best = &best[q]};
+    Floats4 g[2] = {};
+    const bool located = LocatePair(queries, g[0]) & LocatePair(queries + 2, g[1]);
+    const unsigned certified =
+        paired_ && located ? FindPairsQuickly<2 * kLanes, 2>(queries, g) : kAnswerEachAlone;
     if (certified == kAnswerEachAlone) [[unlikely]] {
-      AnswerAlone(entry0, k, results, refused);
-      AnswerAlone(entry1, k + 1, results, refused);
+      // A long row or a block leaving the grid in one pair: each pair alone.
+      AnswerPair<kLanes>(positions, k, results, refused);
+      AnswerPair<kLanes>(positions, k + 2, results, refused);
       continue;
     }
-    if (certified & 1u) {
-      StoreBasis(best[0], results[entry0.index]);
-    } else {
-      AnswerExactly(entry0, k, results, refused);
-    }
-    if (certified & 2u) {
-      StoreBasis(best[1], results[entry1.index]);
-    } else {
-      AnswerExactly(entry1, k + 1, results, refused);
-    }
+    Finish<kLanes>(positions, k, best, certified, 4, results, refused);
   }
+  for (; k + 2 <= count; k += 2) AnswerPair<kLanes>(positions, k, results, refused);
   if (k < count) AnswerAlone(positions[k], k, results, refused);
 }
 

@@ -175,11 +175,21 @@ class NearestSearchGrid {
   // of a block is longer than the pass reads, so each position wants the
   // one-position pass.
   static constexpr unsigned kAnswerEachAlone = 1u << 31;
-  template <int kLanes, typename CellFloats>
-  unsigned FindPairQuickly(const BlockQuery* queries, CellFloats g) const;
+  template <int kLanes, int kPairs, typename CellFloats>
+  unsigned FindPairsQuickly(const BlockQuery* queries, const CellFloats* g) const;
   bool FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
   bool FindInBlockInFourLanes(const Vec2& p, int cx, int cy, double radius1,
                               TwoNearest& best) const;
+  // Entries k and k + 1 of AnswerEach, through one pass of FindPairsQuickly.
+  template <int kLanes>
+  void AnswerPair(std::span<const IndexedPosition> positions, uint32_t k, NearestPoint* results,
+                  std::vector<uint32_t>& refused) const;
+  // The answers of entries k .. k + entries - 1 from a quick pass's bits
+  // (bit q for entry k + q) and `best`, or by the exact phases.
+  template <int kLanes>
+  void Finish(std::span<const IndexedPosition> positions, uint32_t k, const TwoNearest* best,
+              unsigned certified, uint32_t entries, NearestPoint* results,
+              std::vector<uint32_t>& refused) const;
   // AnswerEach with kLanes lanes, inlined into the two entry points below.
   template <int kLanes>
   void AnswerEachIn(std::span<const IndexedPosition> positions, NearestPoint* results,
@@ -214,14 +224,14 @@ class NearestSearchGrid {
   // The points' coordinates, apart so that four load at once: bucketed by
   // cell, then a few far pads (.cc).
   std::vector<double> xs_, ys_;
-  // The same points in cell units as floats (pads far), for FindPairQuickly.
+  // The same points in cell units as floats (pads far), for FindPairsQuickly.
   std::vector<float> cell_xs_, cell_ys_;
   std::vector<uint64_t> ids_;  // ids_[k] is the id of point k
   // Per cell, 1 when a row of its 3x3 block holds more points than the
   // quick pass reads (1% of rows): one load a position instead of three ends.
   std::vector<uint8_t> long_block_;
   bool quick_ = false;       // point indices fit FindInBlockQuickly's keys
-  bool paired_ = false;      // and FindPairQuickly's
+  bool paired_ = false;      // and FindPairsQuickly's
   bool four_lanes_ = false;  // FindInBlockInFourLanes, not ...TwoLanes
 };
 
