@@ -229,11 +229,23 @@ struct SmallestKeys {
 
   // Each lane gets the three smallest of its own and of lane `lane ^ kSwap`'s:
   // with both sorted, the lane-wise minima of one and the other reversed are
-  // the three smallest of the six (a bitonic half-cleaner).
+  // the three smallest of the six (a bitonic half-cleaner), and they rise
+  // then fall, which two levels sort (SortRisingFalling) where three would
+  // for any three.
   template <int kSwap>
   SCALLOP_INLINE void MergeLanes() {
-    Sort(Min(first, Partners<kSwap>(third)), Min(second, Partners<kSwap>(second)),
-         Min(third, Partners<kSwap>(first)));
+    SortRisingFalling(Min(first, Partners<kSwap>(third)), Min(second, Partners<kSwap>(second)),
+                      Min(third, Partners<kSwap>(first)));
+  }
+
+  // Sorts a <= ... b ... >= c (a sequence that rises then falls, either part
+  // possibly empty): with -infinity before it, it is bitonic, and a bitonic
+  // sorter of four gives min(a, c), then min(b, max(a, c)), then the rest.
+  SCALLOP_INLINE void SortRisingFalling(Keys a, Keys b, Keys c) {
+    const Keys high = Max(a, c);
+    first = Min(a, c);
+    second = Min(b, high);
+    third = Max(b, high);
   }
 
   // Lane i of the result is lane i ^ kSwap of `keys`: one shuffle with
