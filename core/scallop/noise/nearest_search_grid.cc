@@ -622,8 +622,10 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosit
   uint32_t k = 0;
   // Two pairs at once: each pair's pass is one chain of dependent steps, and
   // two chains side by side keep the CPU busy where one waited (three spilled
-  // registers and lost a fifth).
-  for (; k + 4 <= count; k += 4) {
+  // registers and lost a fifth). In AVX2 only: in SSE2, whose vectors hold
+  // half as much, two pairs spilled and halved the speed.
+  constexpr bool kTwoPairs = kLanes == 4;
+  for (; kTwoPairs && k + 4 <= count; k += 4) {
     TwoNearest best[4];
     BlockQuery queries[4];
     for (int q = 0; q < 4; ++q) queries[q] = {.p = &positions[k + q].position, .best = &best[q]};

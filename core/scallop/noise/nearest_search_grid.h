@@ -92,7 +92,7 @@ class NearestSearchGrid {
   // `points` must hold every point of the world in CoveredSquare grown by
   // 1 d (so rounding at the edges cannot lose one). REQUIRES: min_distance
   // valid (world.h), ids.size() == points.size(), ids distinct.
-  // Cost: O(points); about 12 KB for an A3 region.
+    // Cost: O(points); about 16 KB for an A3 region.
   NearestSearchGrid(double min_distance, RegionKey key, std::span<const Vec2> points,
                     std::span<const uint64_t> ids, FirstPassWidth width = FirstPassWidth::kWidest);
 
@@ -119,11 +119,11 @@ class NearestSearchGrid {
   // FindTwoNearest of each entry, its answer (ToNearestPoint) written to
   // results[entry.index] when certified; the offsets in `positions` of the
   // entries it cannot certify are appended to `refused`, their results left
-  // alone. The same answers to the bit as FindTwoNearest, and about a fifth
-  // faster than a call of it a position: one call for a batch keeps the
-  // search's constants in registers, and the first passes run two positions
-  // side by side, two independent chains of loads and compares
-  // (docs/noise.md, "Answering a batch").
+    // alone. The same answers to the bit as FindTwoNearest, and faster than a
+  // call of it a position: one call for a batch keeps the search's constants
+  // in registers, a pair of positions shares one vector of float keys, and
+  // two pairs run side by side, two independent chains of loads and
+  // compares (docs/noise.md, "The paired pass", "Answering a batch").
   // REQUIRES: every entry's index < results.size().
   void AnswerEach(std::span<const IndexedPosition> positions, std::span<NearestPoint> results,
                   std::vector<uint32_t>& refused) const;
