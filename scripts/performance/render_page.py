@@ -334,7 +334,7 @@ def nearest(run):
                    f"**{si(o, '/s')}** | **{ratio(o, b)}** |\n")
     warm = rows.get("BM_NearestWarm/image_order:0")
     if warm and "grid_bytes_per_region" in warm:
-        out.append(f"\nGrids take {si(warm['grid_bytes_per_region'], 'B')} a region.\n")
+                out.append(f"\nThe search grids take {warm['grid_bytes_per_region'] / 1000:.1f} KB a region.\n")
     grid = rows.get("BM_NoiseGridWarm")
     if grid and "lookups_per_second" in grid:
         out.append(f"\nA 256 x 256 noise image (`NoiseGrid`): {si(grid['lookups_per_second'], '/s')}"
