@@ -524,21 +524,6 @@ bool NearestSearchGrid::FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, dou
   return FindInBlockQuickly<2>(query);
 }
 
-SCALLOP_INLINE bool NearestSearchGrid::LocateBlock(BlockQuery& query) const {
-  const Pair g = (LoadPair(*query.p) - std::bit_cast<Pair>(origin_)) * Broadcast2(inverse_cell_);
-  if (!BothLanes((g >= Broadcast2(1)) & (g < Broadcast2(kSide - 1)))) return false;
-  // Exact, as Covered's terms are: c = floor(g) >= 1, so g - c (Sterbenz),
-  // 1 - (g - c) and 1 + either are multiples of g's ulp in [0, 2]. Then
-  // min(g - (c - 1), (c + 2) - g) over both axes is 1 + min(f, 1 - f).
-  const PairCells c = __builtin_convertvector(g, PairCells);
-  const Pair f = g - __builtin_convertvector(c, Pair);
-  const Pair rest = Broadcast2(1) - f;
-  const Pair nearer = f < rest ? f : rest;
-  query.radius1 = (1 + std::min(nearer[0], nearer[1])) * cell_ - slack_;
-  query.cell = c[1] * kSide + c[0];
-  return true;
-}
-
 template <typename CellFloats>
 SCALLOP_INLINE bool NearestSearchGrid::LocatePair(BlockQuery* queries, CellFloats& g_floats) const {
   const Pair a = LoadPair(*queries[0].p), b = LoadPair(*queries[1].p);
@@ -551,7 +536,10 @@ SCALLOP_INLINE bool NearestSearchGrid::LocatePair(BlockQuery* queries, CellFloat
                  __builtin_shufflevector(inside, inside, 2, 3))) {
     return false;
   }
-  // As LocateBlock, lane by lane.
+  // The radius has Covered's bits, its terms being exact: c = floor(g) >= 1,
+  // so f = g - c is exact (Sterbenz), and 1 - f and 1 + either are multiples
+  // of g's ulp in [0, 2]. Then min(g - (c - 1), (c + 2) - g) over both axes
+  // is 1 + min(f, 1 - f).
   const QuadCells c = __builtin_convertvector(g, QuadCells);
   const Quad f = g - __builtin_convertvector(c, Quad);
   const Quad rest = Broadcast4(1) - f;

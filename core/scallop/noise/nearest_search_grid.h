@@ -92,7 +92,7 @@ class NearestSearchGrid {
   // `points` must hold every point of the world in CoveredSquare grown by
   // 1 d (so rounding at the edges cannot lose one). REQUIRES: min_distance
   // valid (world.h), ids.size() == points.size(), ids distinct.
-    // Cost: O(points); about 16 KB for an A3 region.
+  // Cost: O(points); about 16 KB for an A3 region.
   NearestSearchGrid(double min_distance, RegionKey key, std::span<const Vec2> points,
                     std::span<const uint64_t> ids, FirstPassWidth width = FirstPassWidth::kWidest);
 
@@ -119,7 +119,7 @@ class NearestSearchGrid {
   // FindTwoNearest of each entry, its answer (ToNearestPoint) written to
   // results[entry.index] when certified; the offsets in `positions` of the
   // entries it cannot certify are appended to `refused`, their results left
-    // alone. The same answers to the bit as FindTwoNearest, and faster than a
+  // alone. The same answers to the bit as FindTwoNearest, and faster than a
   // call of it a position: one call for a batch keeps the search's constants
   // in registers, a pair of positions shares one vector of float keys, and
   // two pairs run side by side, two independent chains of loads and
@@ -149,13 +149,11 @@ class NearestSearchGrid {
     int cell = 0;
     double radius1 = 0;
   };
-  // Fills query's cell and radius1 (Covered) for *query.p, both axes at
-  // once in a lane pair, to the same bits; false when the block leaves the
-  // grid (BlockInGrid) or p is NaN.
-  bool LocateBlock(BlockQuery& query) const;
-  // LocateBlock for the two queries of a pair at once, false if either
-  // fails; g gets both positions' cell coordinates (CellCoordinates) as
-  // four floats, x and y of each.
+  // Fills the cell and radius1 (Covered, to the same bits) of the two
+  // queries of a pair, all four axes in one vector; false when either's
+  // block leaves the grid (BlockInGrid) or its position is NaN. g gets both
+  // positions' cell coordinates (CellCoordinates) as four floats, x and y
+  // of each.
   template <typename CellFloats>
   bool LocatePair(BlockQuery* queries, CellFloats& g) const;
   // Phase 1 without branches on the data, kLanes double keys at a time, for
