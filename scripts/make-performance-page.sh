@@ -71,7 +71,7 @@ if ((quick)); then
 else
   bench samplers_bench
   bench field_bench --benchmark_filter='1M|250k'
-  bench layers_bench --benchmark_filter=250k
+  bench layers_bench --benchmark_filter=250k --benchmark_enable_random_interleaving=true --benchmark_repetitions=5
   bench plane_bench
   bench nearest_bench
   bench deterministic_math_bench
