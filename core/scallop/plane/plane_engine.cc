@@ -154,7 +154,9 @@ StatusOr<PlanePoints> PlaneEngine::Points(const World& world, const Rect& rect, 
   for (int k = 0; k < (world_layers ? world_layers->count() : 1); ++k) {
     if (world_layers && ((layers >> k) & 1) == 0) continue;
     const World& own = world_layers ? world_layers->world(k) : world;
-    if (Status status = ValidateQuery(own, rect); !status.ok()) return status;
+    if (Status status = world_layers ? ValidateQuery(own, rect) : Status(); !status.ok()) {
+      return status;
+    }
     std::vector<RegionHandle> regions = Resolve(own, RegionsOverlapping(own, rect));
     for (const RegionHandle& region : regions) upper_bound += region->points.size();
     parts.emplace_back(k, std::move(regions));
