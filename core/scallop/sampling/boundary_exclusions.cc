@@ -28,6 +28,7 @@ BoundaryExclusions::BoundaryExclusions(std::span<const ExclusionDisk> disks, dou
                                        double spacing, double max_abs_coordinate)
     : spacing_(spacing) {
   std::vector<Disk> given;
+  given.reserve(disks.size());
   for (const ExclusionDisk& disk : disks) {
     if (!(disk.radius > 0.0)) continue;
     // Disks come layer by layer, so the last radius is nearly always the one.
