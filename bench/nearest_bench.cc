@@ -118,9 +118,9 @@ BENCHMARK(BM_JitteredGridBaseline)->ArgName("image_order")->Arg(0)->Arg(1);
 
 // Warm lookups of `positions` in `world`, with the lookup's fallbacks and grid size.
 void TimeWarmLookups(benchmark::State& state, const World& world,
-                     const std::vector<Vec2>& positions) {
+                     const std::vector<Vec2>& positions, NearestLookupOptions options = {}) {
   PlaneEngine engine({.threads = 2});
-  NearestLookup lookup(engine);
+  NearestLookup lookup(engine, options);
   std::vector<NearestPoint> out(positions.size());
   // Warm every region and grid of the area first: the figure is for warm lookups.
   if (!lookup.Nearest(world, positions, out).ok()) state.SkipWithError("lookup failed");
@@ -141,6 +141,14 @@ void BM_NearestWarm(benchmark::State& state) {
                   state.range(0) ? ImagePositions() : RandomPositions(1));
 }
 BENCHMARK(BM_NearestWarm)->ArgName("image_order")->Arg(0)->Arg(1);
+
+// The same random positions through the SSE2 code, whatever this CPU has:
+// what a CPU without AVX2 runs (docs/noise.md, "Speed").
+void BM_NearestWarmTwoLanes(benchmark::State& state) {
+  TimeWarmLookups(state, *World::Create({.seed = 7}), RandomPositions(1),
+                  {.first_pass_width = NearestSearchGrid::FirstPassWidth::kTwoLanes});
+}
+BENCHMARK(BM_NearestWarmTwoLanes);
 
 // Warm lookups on radius-field worlds (noise over [1, ratio], at 90% of the slope bound), the
 // same positions in units of r_min, beside BM_NearestWarm's constant world (d = 1) in the same

@@ -76,7 +76,7 @@ else
   bench field_bench --benchmark_filter='1M|250k'
   bench layers_bench --benchmark_filter=250k --benchmark_enable_random_interleaving=true --benchmark_repetitions=5
   bench plane_bench
-  bench nearest_bench
+  bench nearest_bench --benchmark_enable_random_interleaving=true --benchmark_repetitions=9
   bench deterministic_math_bench
   bench follow_bench
   bench wire_bench --benchmark_min_time=0.2

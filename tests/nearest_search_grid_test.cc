@@ -194,6 +194,19 @@ TEST_P(NearestSearchGridTest, CertifiedAnswersAreExactOnSparseSubsets) {
   EXPECT_GT(refused, 1000);  // sparse sets often need cells beyond the grid
 }
 
+// A region at d = scale, at the origin or (far) the last one before the
+// precision limit; At(u, v) is the point u, v d from its low corner.
+struct ScaledRegion {
+  ScaledRegion(double scale, bool far)
+      : scale(scale),
+        key(far ? RegionKey{(int64_t{1} << 28) - 1, -(int64_t{1} << 28)} : RegionKey{0, 0}),
+        rect(RegionLayout(scale).RegionRect(key)) {}
+  Vec2 At(double u, double v) const { return {rect.x0 + u * scale, rect.y0 + v * scale}; }
+  double scale;
+  RegionKey key;
+  Rect rect;
+};
+
 // The search's first pass orders points by their squared distance with its
 // low 16 bits replaced by an index, reading a fixed number of points per row
 // past the row's end. These sets aim at what that could get wrong: distances
@@ -212,12 +225,9 @@ TEST_P(NearestSearchGridTest, FirstPassIsExactOnNearTiesPointsDenseRowsAndExtrem
   for (uint64_t seed = 1; seed <= 40; ++seed) {
     Rng rng(seed);
     const double scale = seed % 4 == 0 ? 0x1.0p-256 : seed % 4 == 1 ? 0x1.0p+256 : 1.0;
-    const RegionKey key =
-        seed % 2 == 0 ? RegionKey{(int64_t{1} << 28) - 1, -(int64_t{1} << 28)} : RegionKey{0, 0};
-    const Rect region = RegionLayout(scale).RegionRect(key);
-    auto at = [&](double u, double v) {
-      return Vec2{region.x0 + u * scale, region.y0 + v * scale};
-    };
+    const ScaledRegion region(scale, seed % 2 == 0);
+    const RegionKey key = region.key;
+    auto at = [&](double u, double v) { return region.At(u, v); };
     // Background points, 1 to 7 per d^2, and a centre p with three points at
     // about the same distance r, each a few ulps (0 to 2^12) from the others.
     const double density = 1.0 + static_cast<double>(seed % 7);
@@ -248,6 +258,54 @@ TEST_P(NearestSearchGridTest, FirstPassIsExactOnNearTiesPointsDenseRowsAndExtrem
   }
   EXPECT_GT(certified, 3000);
   EXPECT_GT(ties, 5);
+}
+
+// AnswerEach ranks a pair of positions by float squared distances in cell
+// units, good to about 2^-18 (1 + D) cells^2, and trusts the order only
+// where the three smallest are apart by 2^-11 (1 + T) (docs/noise.md,
+// "The paired pass"). Three points at nearly the same distance from p, the
+// gaps 2^-4 to 2^-30 relative (either side of the float resolution), at
+// distances from 0.6 d down to 2^-20 d (where float rounding is largest
+// against the distance), at three scales and far from the origin: every
+// answer must be the plain scan's. Sets stay under 1,024 points, the most
+// the paired pass takes.
+TEST_P(NearestSearchGridTest, PairedPassIsExactWhereFloatsCannotTellDistancesApart) {
+  int positions_checked = 0;
+  for (uint64_t seed = 1; seed <= 60; ++seed) {
+    Rng rng(seed);
+    const double scale = seed % 3 == 0 ? 0x1.0p-256 : seed % 3 == 1 ? 0x1.0p+256 : 1.0;
+    const ScaledRegion region(scale, seed % 2 == 0);
+    const RegionKey key = region.key;
+    auto at = [&](double u, double v) { return region.At(u, v); };
+    const Vec2 p = at(rng.Uniform(0, 16), rng.Uniform(0, 16));
+    const double radius =
+        scale * std::ldexp(rng.Uniform(0.3, 0.6), -static_cast<int>(rng.Below(21)));
+    // Background about 0.8 points per d^2, none within 1.2 d of p.
+    PointSet set;
+    for (int k = 0; k < 460; ++k) {
+      const Vec2 q = at(rng.Uniform(-4, 20), rng.Uniform(-4, 20));
+      if (std::hypot(q.x - p.x, q.y - p.y) > 1.2 * scale) set.points.push_back(q);
+    }
+    double distance = radius;
+    for (int k = 0; k < 3; ++k) {
+      const double angle = rng.Uniform(0, 6.283185307179586);
+      set.points.push_back({p.x + distance * std::cos(angle), p.y + distance * std::sin(angle)});
+      distance *= 1 + std::ldexp(1.0, -4 - static_cast<int>(rng.Below(27)));
+    }
+    for (size_t k = 0; k < set.points.size(); ++k) set.ids.push_back(rng.NextBits());
+    const NearestSearchGrid grid(scale, key, set.points, set.ids, GetParam());
+    // p in every pair, beside p itself, random positions and points.
+    std::vector<Vec2> positions;
+    for (int k = 0; k < 40; ++k) {
+      positions.push_back(p);
+      positions.push_back(k % 2 ? p : at(rng.Uniform(0, 16), rng.Uniform(0, 16)));
+      positions.push_back(set.points[rng.Below(set.points.size())]);
+    }
+    positions_checked += static_cast<int>(positions.size());
+    EXPECT_EQ(CountBatchMismatches(grid, set, positions), 0)
+        << "seed " << seed << ", radius " << radius / scale << " d";
+  }
+  EXPECT_GT(positions_checked, 7000);
 }
 
 // With fewer than two points within reach, or a position whose cells leave

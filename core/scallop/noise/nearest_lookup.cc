@@ -9,6 +9,7 @@
 #include <string>
 
 #include "scallop/base/number_text.h"
+#include "scallop/noise/coordinate_pair.h"
 #include "scallop/plane/query_rect.h"
 #include "scallop/random/rng.h"
 
@@ -304,30 +305,35 @@ Status NearestLookup::AssignGrids(const World& world, std::span<const Vec2> posi
   // Plain pointers: through the vectors GCC reloaded them for every position.
   const uint32_t* const window_cells = window.empty() ? nullptr : window.data();
   uint32_t* const grid_of_data = grid_of.data();
-  const double window_x = static_cast<double>(window_low.i);
-  const double window_y = static_cast<double>(window_low.j);
-  for (size_t k = 0; k < positions.size(); ++k) {
-    const Vec2 p = positions[k];
+  const Pair window_low_corner = {static_cast<double>(window_low.i),
+                                  static_cast<double>(window_low.j)};
+  const size_t count = positions.size();
+  for (size_t k = 0; k < count; ++k) {
+    // Positions in regions of the window met before, in a loop of their own
+    // (with the rest in it GCC kept its constants on the stack): a region's
+    // grid from one multiply and subtract and one load, both axes in a lane
+    // pair, without the region's key (clamping and the comparison with the
+    // current region cost more than that). Rounding may put a position
+    // within an ulp of a seam into the neighbouring cell, harmless as above.
     // Validation here, not in a pass of its own: one read of the positions.
-    if (!InRange(p, limit)) return ValidatePosition(world, p, k);
-    // A region of the window met before: its grid from one multiply and
-    // subtract an axis and a load, without the region's key (clamping and
-    // the comparison with the current region cost more than that). Rounding
-    // may put a position within an ulp of a seam into the neighbouring
-    // cell, harmless as above.
     if (window_cells != nullptr) {
-      const double wx = p.x * inverse_side - window_x, wy = p.y * inverse_side - window_y;
-      if (wx >= 0 && wx < kWindowSide && wy >= 0 && wy < kWindowSide) {
-        // Through int: a conversion to an unsigned type costs a test of 2^63.
-        const uint32_t known =
-            window_cells[static_cast<int>(wy) * kWindowSide + static_cast<int>(wx)];
-        if (known != kNoGrid) {
-          grid_of_data[k] = known;
-          ++counted[known];
-          continue;
+      for (; k < count; ++k) {
+        const Pair p = LoadPair(positions[k]);
+        const Pair w = p * Broadcast2(inverse_side) - window_low_corner;
+        if ((LanesSet(Magnitude(p) <= Broadcast2(limit)) & LanesSet(w >= Broadcast2(0)) &
+             LanesSet(w < Broadcast2(kWindowSide))) != 3) {
+          break;
         }
+        const PairCells cell = __builtin_convertvector(w, PairCells);
+        const uint32_t known = window_cells[cell[1] * kWindowSide + cell[0]];
+        if (known == kNoGrid) break;
+        grid_of_data[k] = known;
+        ++counted[known];
       }
+      if (k == count) break;
     }
+    const Vec2 p = positions[k];
+    if (!InRange(p, limit)) return ValidatePosition(world, p, k);
     const RegionKey key = ApproximateRegionOf(p, inverse_side, regions_per_half_axis);
     if (k == 0 || key != current_key) {
       current_key = key;
@@ -380,8 +386,8 @@ StatusOr<NearestLookup::GridHandle> NearestLookup::Grid(const World& world, Regi
         {covered.x0 - d, covered.y0 - d, covered.x1 + d, covered.y1 + d}, layout.precision_limit());
     StatusOr<PlanePoints> points = engine_.Points(world, source);
     if (!points.ok()) return points.status();
-    grid.constant =
-        std::make_shared<const NearestSearchGrid>(d, region, points->positions, points->ids);
+    grid.constant = std::make_shared<const NearestSearchGrid>(
+        d, region, points->positions, points->ids, options_.first_pass_width);
   }
 
   std::lock_guard lock(mutex_);

@@ -27,10 +27,13 @@ enum class NearestMethod {
 };
 
 struct NearestLookupOptions {
-  // Budget of the search-grid cache (about 12 KB a region: 64 MB holds 5,000;
+  // Budget of the search-grid cache (about 16 KB a region: 64 MB holds 4,000;
   // a field world's grid holds its region and margin, about 24 bytes a point).
   int64_t cache_bytes = int64_t{64} << 20;
   NearestMethod method = NearestMethod::kGrid;
+  // The grids' vector width (same answers either way): kTwoLanes runs the
+  // SSE2 code a CPU without AVX2 gets, for nearest_bench to measure that.
+  NearestSearchGrid::FirstPassWidth first_pass_width = NearestSearchGrid::FirstPassWidth::kWidest;
 };
 
 // Polled during long calls; true asks the call to stop with kCancelled (a
@@ -58,9 +61,9 @@ class NearestLookup {
   // Rejects: INVALID_ARGUMENT for a
   // non-finite coordinate; OUT_OF_RANGE for |x| or |y| > 2^32 d; errors name
   // the position, e.g. "positions[3].x".
-  // Cost, warm: about 40 ns of CPU a position on this project's shared
-  // Intel Xeon (42 ns median, 40 ns best, random or image order,
-  // docs/performance.md; slower on AMD Zen 3, docs/noise.md), plus a
+  // Cost, warm: about 41 ns of CPU a position on this project's shared
+  // Intel Xeon at load 5 to 7 (24.6M/s, random or image order,
+  // docs/performance.md; Zen 3 unmeasured since it was slower, docs/noise.md), plus a
   // mutex and a hash lookup per region a batch visits. A missing grid costs
   // one PlaneEngine::Points query of 24 d x 24 d, plus generation when cold.
   // Memory: about 28 bytes a position besides `results`, to group by region;

@@ -8,6 +8,8 @@
 #include <cstring>
 #include <utility>
 
+#include "scallop/noise/coordinate_pair.h"
+
 namespace scallop {
 namespace {
 
@@ -62,6 +64,40 @@ struct LaneTypes<4> {
   static constexpr Bits kIndex = {0, 1, 2, 3};
 };
 
+// The paired pass (FindPairsQuickly) ranks floats: squared distances in cell
+// units from float cell coordinates, their low kPairIndexBits replaced by
+// the point's index. A grid's points are then at most 2^kPairIndexBits, pads
+// included (a maximal world's grid holds at most about 620: 484 cells at
+// the densest packing). Truncation leaves 13 bits: a key's value T and the
+// float distance F it came from have T <= F < T (1 + 2^-13).
+constexpr int kPairIndexBits = 10;
+constexpr uint32_t kPairIndexMask = (uint32_t{1} << kPairIndexBits) - 1;
+
+// Where the pads lie in cell units: farther than any block reaches, and a
+// float squared distance (2^81) far from overflowing.
+constexpr float kPadCell = 0x1.0p+40f;
+
+// kLanes float keys, the first half for one position and the second half for
+// the other of a pair: four lanes in SSE2, eight in AVX.
+template <int kLanes>
+struct PairLaneTypes;
+template <>
+struct PairLaneTypes<4> {
+  using Keys = float __attribute__((vector_size(16)));
+  using Bits = uint32_t __attribute__((vector_size(16)));
+  using Half = float __attribute__((vector_size(8)));
+  static constexpr Bits kIndex = {0, 1, 0, 1};
+};
+template <>
+struct PairLaneTypes<8> {
+  using Keys = float __attribute__((vector_size(32)));
+  using Bits = uint32_t __attribute__((vector_size(32)));
+  using Half = float __attribute__((vector_size(16)));
+  static constexpr Bits kIndex = {0, 1, 2, 3, 0, 1, 2, 3};
+};
+using Floats4 = float __attribute__((vector_size(16)));
+using Floats4Bits = uint32_t __attribute__((vector_size(16)));
+
 // Everything below is inlined into its caller, whatever the caller's target:
 // the four-lane code then compiles to AVX inside the AVX2 entry point only.
 // Hence no lambda, and no function without SCALLOP_INLINE, may take or
@@ -97,14 +133,67 @@ SCALLOP_INLINE typename LaneTypes<kLanes>::Keys KeysOf(const double* xs, const d
   return reinterpret_cast<Keys>((bits & ~kIndexMask) | (first + LaneTypes<kLanes>::kIndex));
 }
 
+// The float keys of a pair: points first_a .. first_a + kLanes / 2 - 1 about
+// (gx_a, gy_a) in the first half, first_b .. about (gx_b, gy_b) in the second.
+template <int kLanes>
+SCALLOP_INLINE typename PairLaneTypes<kLanes>::Keys PairKeysOf(
+    const float* gxs, const float* gys, typename PairLaneTypes<kLanes>::Keys gx,
+    typename PairLaneTypes<kLanes>::Keys gy, uint32_t first_a, uint32_t first_b,
+    typename PairLaneTypes<kLanes>::Bits index) {
+  using Types = PairLaneTypes<kLanes>;
+  using Keys = typename Types::Keys;
+  using Bits = typename Types::Bits;
+  typename Types::Half xa, xb, ya, yb;
+  std::memcpy(&xa, gxs + first_a, sizeof(xa));
+  std::memcpy(&xb, gxs + first_b, sizeof(xb));
+  std::memcpy(&ya, gys + first_a, sizeof(ya));
+  std::memcpy(&yb, gys + first_b, sizeof(yb));
+  Keys x, y;
+  if constexpr (kLanes == 4) {
+    x = __builtin_shufflevector(xa, xb, 0, 1, 2, 3);
+    y = __builtin_shufflevector(ya, yb, 0, 1, 2, 3);
+  } else {
+    x = __builtin_shufflevector(xa, xb, 0, 1, 2, 3, 4, 5, 6, 7);
+    y = __builtin_shufflevector(ya, yb, 0, 1, 2, 3, 4, 5, 6, 7);
+  }
+  const Keys dx = gx - x, dy = gy - y;
+  const auto bits = reinterpret_cast<Bits>(dx * dx + dy * dy);
+  return reinterpret_cast<Keys>((bits & ~kPairIndexMask) | index);
+}
+
+// The first points of a pair's three rows, {a0, a1, a2, 0, b0, b1, b2, 0},
+// and row kRow's broadcast to each position's half of kLanes lanes.
+using PairRows = uint32_t __attribute__((vector_size(32)));
+template <int kLanes, int kRow>
+SCALLOP_INLINE typename PairLaneTypes<kLanes>::Bits RowIndex(PairRows rows) {
+  constexpr int a = kRow, b = 4 + kRow;
+  if constexpr (kLanes == 4) {
+    return __builtin_shufflevector(rows, rows, a, a, b, b);
+  } else {
+    return __builtin_shufflevector(rows, rows, a, a, a, a, b, b, b, b);
+  }
+}
+
+// {a[0], b[0], a[h], b[h]} for h half the lanes: an unpack and, for eight
+// lanes, the two 128-bit halves side by side (no lane-crossing permute).
+template <typename Keys>
+SCALLOP_INLINE Floats4 FirstLanesOfHalves(Keys a, Keys b) {
+  if constexpr (sizeof(Keys) == 16) {
+    return __builtin_shufflevector(a, b, 0, 4, 2, 6);
+  } else {
+    const Keys unpacked = __builtin_shufflevector(a, b, 0, 8, 1, 9, 4, 12, 5, 13);
+    return __builtin_shufflevector(unpacked, unpacked, 0, 1, 4, 5);
+  }
+}
+
 // The three smallest keys offered to each lane, in order. Non-negative
 // finite doubles order as their bits do, and `a < b ? a : b` is minpd: keys
 // are ranked as doubles, without branching on the data. Every min and max
 // takes two variables: with a constant operand GCC 12 built compare-and-blend
 // sequences instead.
-template <int kLanes>
+template <typename Keys>
 struct SmallestKeys {
-  using Keys = typename LaneTypes<kLanes>::Keys;
+  static constexpr int kLanes = sizeof(Keys) / sizeof(Keys{}[0]);
   Keys first, second, third;
 
   SCALLOP_INLINE void Start(Keys a, Keys b, Keys c) { Sort(a, b, c); }
@@ -117,11 +206,13 @@ struct SmallestKeys {
     third = Min(third, high2);
   }
 
-  // Lane 0 gets the three smallest of all lanes.
-  SCALLOP_INLINE void MergeAllLanes() {
-    static_assert(kLanes == 2 || kLanes == 4);
+  // The first lane of each group of kGroup lanes gets the three smallest of
+  // its group: all lanes for one position's keys, half of them for a pair's.
+  template <int kGroup>
+  SCALLOP_INLINE void MergeGroupsOf() {
+    static_assert(kGroup == 2 || kGroup == 4);
     MergeLanes<1>();
-    if constexpr (kLanes == 4) MergeLanes<2>();
+    if constexpr (kGroup == 4) MergeLanes<2>();
   }
 
  private:
@@ -138,11 +229,23 @@ struct SmallestKeys {
 
   // Each lane gets the three smallest of its own and of lane `lane ^ kSwap`'s:
   // with both sorted, the lane-wise minima of one and the other reversed are
-  // the three smallest of the six (a bitonic half-cleaner).
+  // the three smallest of the six (a bitonic half-cleaner), and they rise
+  // then fall, which two levels sort (SortRisingFalling) where three would
+  // for any three.
   template <int kSwap>
   SCALLOP_INLINE void MergeLanes() {
-    Sort(Min(first, Partners<kSwap>(third)), Min(second, Partners<kSwap>(second)),
-         Min(third, Partners<kSwap>(first)));
+    SortRisingFalling(Min(first, Partners<kSwap>(third)), Min(second, Partners<kSwap>(second)),
+                      Min(third, Partners<kSwap>(first)));
+  }
+
+  // Sorts a <= ... b ... >= c (a sequence that rises then falls, either part
+  // possibly empty): with -infinity before it, it is bitonic, and a bitonic
+  // sorter of four gives min(a, c), then min(b, max(a, c)), then the rest.
+  SCALLOP_INLINE void SortRisingFalling(Keys a, Keys b, Keys c) {
+    const Keys high = Max(a, c);
+    first = Min(a, c);
+    second = Min(b, high);
+    third = Max(b, high);
   }
 
   // Lane i of the result is lane i ^ kSwap of `keys`: one shuffle with
@@ -158,8 +261,33 @@ struct SmallestKeys {
   }
 };
 
-using Pair = double __attribute__((vector_size(16)));
-static_assert(sizeof(Pair) == sizeof(Vec2));
+// Both positions of a pair, x and y: AVX lanes, or two SSE2 registers.
+using Quad = double __attribute__((vector_size(32)));
+using QuadBits = int64_t __attribute__((vector_size(32)));
+using QuadCells = int32_t __attribute__((vector_size(16)));
+SCALLOP_INLINE Quad Broadcast4(double value) { return Quad{value, value, value, value}; }
+
+// Bit k: lane k of a comparison of four floats holds true.
+SCALLOP_INLINE unsigned FloatLanesSet(Floats4Bits mask) {
+#if defined(__SSE2__)
+  return static_cast<unsigned>(__builtin_ia32_movmskps(reinterpret_cast<Floats4>(mask)));
+#else
+  unsigned bits = 0;
+  for (int lane = 0; lane < 4; ++lane) bits |= (mask[lane] != 0 ? 1u : 0u) << lane;
+  return bits;
+#endif
+}
+
+// Both square roots in one instruction, correctly rounded as std::sqrt's
+// are; and without std::sqrt's test for a negative argument (errno), which
+// GCC 12 kept for a sum of squares.
+SCALLOP_INLINE Pair SquareRoots(Pair squares) {
+#if defined(__SSE2__)
+  return __builtin_ia32_sqrtpd(squares);
+#else
+  return Pair{std::sqrt(squares[0]), std::sqrt(squares[1])};
+#endif
+}
 
 bool CpuHasAvx2() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -203,7 +331,10 @@ NearestSearchGrid::NearestSearchGrid(double min_distance, RegionKey key,
   xs_.resize(cell_start_.back() + kRunPad, kPadCoordinate);
   ys_.resize(cell_start_.back() + kRunPad, kPadCoordinate);
   ids_.resize(cell_start_.back() + kRunPad, 0);
+  cell_xs_.resize(cell_start_.back() + kRunPad, kPadCell);
+  cell_ys_.resize(cell_start_.back() + kRunPad, kPadCell);
   quick_ = ids_.size() <= kIndexMask + 1;
+  paired_ = ids_.size() <= kPairIndexMask + 1;
   // Stable within a cell (input order), so a grid is a pure function of its input.
   for (size_t k = 0; k < points.size(); ++k) {
     if (cell_of[k] < 0) continue;
@@ -211,12 +342,26 @@ NearestSearchGrid::NearestSearchGrid(double min_distance, RegionKey key,
     xs_[slot] = points[k].x;
     ys_[slot] = points[k].y;
     ids_[slot] = ids[k];
+    // CellCoordinates' g, in [0, kSide) here, rounded to float.
+    cell_xs_[slot] = static_cast<float>((points[k].x - origin_.x) * inverse_cell_);
+    cell_ys_[slot] = static_cast<float>((points[k].y - origin_.y) * inverse_cell_);
+  }
+  long_block_.assign(kSide * kSide, 0);
+  for (int cy = 1; cy < kSide - 1; ++cy) {
+    for (int cx = 1; cx < kSide - 1; ++cx) {
+      for (int row = cy - 1; row <= cy + 1; ++row) {
+        const uint32_t run = cell_start_[row * kSide + cx + 2] - cell_start_[row * kSide + cx - 1];
+        if (run > kRunPoints) long_block_[cy * kSide + cx] = 1;
+      }
+    }
   }
 }
 
 size_t NearestSearchGrid::Bytes() const {
-  return sizeof(*this) + cell_start_.capacity() * sizeof(uint32_t) +
-         (xs_.capacity() + ys_.capacity()) * sizeof(double) + ids_.capacity() * sizeof(uint64_t);
+  return sizeof(*this) + cell_start_.capacity() * sizeof(uint32_t) + long_block_.capacity() +
+         (xs_.capacity() + ys_.capacity()) * sizeof(double) +
+         (cell_xs_.capacity() + cell_ys_.capacity()) * sizeof(float) +
+         ids_.capacity() * sizeof(uint64_t);
 }
 
 void NearestSearchGrid::ScanRow(int row, int first, int last, const Vec2& p,
@@ -228,97 +373,233 @@ void NearestSearchGrid::ScanRow(int row, int first, int last, const Vec2& p,
   }
 }
 
-template <int kLanes, int kPositions>
-SCALLOP_INLINE unsigned NearestSearchGrid::FindInBlocksQuickly(const BlockQuery* queries) const {
+SCALLOP_INLINE bool NearestSearchGrid::TakeFound(const BlockQuery& query, uint32_t i1,
+                                                 uint32_t i2) const {
+  const Vec2& p = *query.p;
+  TwoNearest& best = *query.best;
+  best.squared1 = SquaredDistanceFrom(p, Point(i1));
+  best.squared2 = SquaredDistanceFrom(p, Point(i2));
+  best.id1 = ids_[i1];
+  best.id2 = ids_[i2];
+  // Each point as one 16-byte store: the caller reads it so, and one built
+  // from two 8-byte stores would stall that read (no store forwarding).
+  const Pair point1 = {xs_[i1], ys_[i1]}, point2 = {xs_[i2], ys_[i2]};
+  best.point1 = std::bit_cast<Vec2>(point1);
+  best.point2 = std::bit_cast<Vec2>(point2);
+  // Else phase 2 is needed (or a pad is among the two).
+  return best.squared2 <= query.radius1 * query.radius1;
+}
+
+template <int kLanes>
+SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const BlockQuery& query) const {
   using Keys = typename LaneTypes<kLanes>::Keys;
   static_assert(kRunPoints % kLanes == 0);
-  // Examines every point of each position's 3x3 block, and some beyond it
+  // Examines every point of the position's 3x3 block, and some beyond it
   // (later cells of a row, the far pads, possibly a point twice): extra
   // points are real, or farther than any block reaches, so they cannot make
-  // a wrong answer look right. Each step runs for every position before the
-  // next step: the positions' chains of dependent loads and compares are
-  // independent, and side by side the CPU overlaps them.
+  // a wrong answer look right.
   const double* const xs = xs_.data();
   const double* const ys = ys_.data();
-  Keys px[kPositions], py[kPositions];
-  uint32_t first[kPositions][3], end[kPositions][3];
-  // Longer runs are rare (1% of rows): one branch for them all.
-  bool long_run = false;
-  for (int q = 0; q < kPositions; ++q) {
-    px[q] = Broadcast<kLanes>(queries[q].p->x);
-    py[q] = Broadcast<kLanes>(queries[q].p->y);
-    for (int r = 0; r < 3; ++r) {
-      const int row = queries[q].cy - 1 + r;
-      first[q][r] = cell_start_[row * kSide + queries[q].cx - 1];
-      end[q][r] = cell_start_[row * kSide + queries[q].cx + 2];
-      long_run |= end[q][r] - first[q][r] > kRunPoints;
-    }
-  }
-  // Several positions at once leave them to the one-position pass: its loop
-  // here kept every position's keys in memory, not registers.
-  if constexpr (kPositions > 1) {
-    if (long_run) [[unlikely]] return kAnswerEachAlone;
-  }
+  const Keys px = Broadcast<kLanes>(query.p->x), py = Broadcast<kLanes>(query.p->y);
+  // Row r of the block starts at runs[r * kSide] and ends at runs[r * kSide + 3].
+  const uint32_t* const runs = cell_start_.data() + query.cell - kSide - 1;
+  uint32_t first[3];
+  for (int r = 0; r < 3; ++r) first[r] = runs[r * kSide];
   constexpr int kVectors = 3 * kRunPoints / kLanes;  // for the runs' first kRunPoints
   static_assert(kVectors >= 3);
-  SmallestKeys<kLanes> keys[kPositions];
-  for (int q = 0; q < kPositions; ++q) {
-    Keys fixed[kVectors];
-    for (int v = 0; v < kVectors; ++v) {
-      fixed[v] = KeysOf<kLanes>(xs, ys, px[q], py[q],
-                                first[q][v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
-    }
-    keys[q].Start(fixed[0], fixed[1], fixed[2]);
-    for (int v = 3; v < kVectors; ++v) keys[q].Offer(fixed[v]);
+  SmallestKeys<Keys> keys;
+  Keys fixed[kVectors];
+  for (int v = 0; v < kVectors; ++v) {
+    fixed[v] =
+        KeysOf<kLanes>(xs, ys, px, py, first[v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
   }
-  if (long_run) [[unlikely]] {
-    for (int q = 0; q < kPositions; ++q) {
-      for (int r = 0; r < 3; ++r) {
-        for (uint32_t k = first[q][r] + kRunPoints; k < end[q][r]; k += kLanes)
-          keys[q].Offer(KeysOf<kLanes>(xs, ys, px[q], py[q], k));
+  keys.Start(fixed[0], fixed[1], fixed[2]);
+  for (int v = 3; v < kVectors; ++v) keys.Offer(fixed[v]);
+  // Longer runs are rare (1% of rows).
+  if (long_block_[query.cell] != 0) [[unlikely]] {
+    for (int r = 0; r < 3; ++r) {
+      for (uint32_t k = first[r] + kRunPoints; k < runs[r * kSide + 3]; k += kLanes)
+        keys.Offer(KeysOf<kLanes>(xs, ys, px, py, k));
+    }
+  }
+  keys.template MergeGroupsOf<kLanes>();
+  // Distinct truncated distances: the first key's point is strictly nearer
+  // than every other point examined, and the second's strictly second (a
+  // point examined twice would tie with itself). Ties by id cannot arise,
+  // so the exact order by (squared, id) is this one. Otherwise (ties, or
+  // distances equal to 2^-36), the exact scan decides.
+  const auto key1 = std::bit_cast<uint64_t>(keys.first[0]);
+  const auto key2 = std::bit_cast<uint64_t>(keys.second[0]);
+  const auto key3 = std::bit_cast<uint64_t>(keys.third[0]);
+  const bool distinct = ((key1 >> kIndexBits) != (key2 >> kIndexBits)) &
+                        ((key2 >> kIndexBits) != (key3 >> kIndexBits));
+  // Every index is a point's or a pad's, so the reads below are in bounds
+  // whether or not the answer stands: no branch until the caller's.
+  const auto i1 = static_cast<uint32_t>(key1 & kIndexMask);
+  const auto i2 = static_cast<uint32_t>(key2 & kIndexMask);
+  const bool within = TakeFound(query, i1, i2);
+  return distinct & within;
+}
+
+template <int kLanes, int kPairs, typename CellFloats>
+SCALLOP_INLINE unsigned NearestSearchGrid::FindPairsQuickly(const BlockQuery* queries,
+                                                            const CellFloats* g) const {
+  using Types = PairLaneTypes<kLanes>;
+  using Keys = typename Types::Keys;
+  constexpr int kHalf = kLanes / 2;  // lanes a position
+  static_assert(kRunPoints % kHalf == 0);
+  // As FindInBlockQuickly, for pairs: the same points examined, and the
+  // same exact distances recomputed for the two found. Each step runs for
+  // every pair before the next: the pairs' chains of dependent loads,
+  // minima and maxima are independent, and side by side the CPU overlaps them.
+  uint32_t first[2 * kPairs][3];
+  bool long_run = false;
+  for (int q = 0; q < 2 * kPairs; ++q) {
+    const uint32_t* runs = cell_start_.data() + queries[q].cell - kSide - 1;
+    for (int r = 0; r < 3; ++r) first[q][r] = runs[r * kSide];
+    long_run |= long_block_[queries[q].cell] != 0;
+  }
+  if (long_run) [[unlikely]]
+    return kAnswerEachAlone;
+  constexpr int kParts = kRunPoints / kHalf;  // vectors a row
+  SmallestKeys<Keys> keys[kPairs];
+  for (int pair = 0; pair < kPairs; ++pair) {
+    // Each position's cell coordinates broadcast to its half.
+    const CellFloats gp = g[pair];
+    Keys gx, gy;
+    if constexpr (kLanes == 4) {
+      gx = __builtin_shufflevector(gp, gp, 0, 0, 2, 2);
+      gy = __builtin_shufflevector(gp, gp, 1, 1, 3, 3);
+    } else {
+      gx = __builtin_shufflevector(gp, gp, 0, 0, 0, 0, 2, 2, 2, 2);
+      gy = __builtin_shufflevector(gp, gp, 1, 1, 1, 1, 3, 3, 3, 3);
+    }
+    // The rows' first points, each broadcast to its half by one in-lane shuffle.
+    const uint32_t(&a)[3] = first[2 * pair];
+    const uint32_t(&b)[3] = first[2 * pair + 1];
+    const PairRows rows = {a[0], a[1], a[2], 0, b[0], b[1], b[2], 0};
+    const typename Types::Bits row_index[3] = {RowIndex<kLanes, 0>(rows) + Types::kIndex,
+                                               RowIndex<kLanes, 1>(rows) + Types::kIndex,
+                                               RowIndex<kLanes, 2>(rows) + Types::kIndex};
+    Keys fixed[3 * kParts];
+    for (int r = 0; r < 3; ++r) {
+      for (int part = 0; part < kParts; ++part) {
+        fixed[r * kParts + part] = PairKeysOf<kLanes>(
+            cell_xs_.data(), cell_ys_.data(), gx, gy, a[r] + part * kHalf, b[r] + part * kHalf,
+            row_index[r] + static_cast<uint32_t>(part * kHalf));
       }
     }
+    keys[pair].Start(fixed[0], fixed[1], fixed[2]);
+    for (int v = 3; v < 3 * kParts; ++v) keys[pair].Offer(fixed[v]);
   }
+  for (int pair = 0; pair < kPairs; ++pair) keys[pair].template MergeGroupsOf<kHalf>();
   unsigned certified = 0;
-  for (int q = 0; q < kPositions; ++q) {
-    keys[q].MergeAllLanes();
-    // Distinct truncated distances: the first key's point is strictly nearer
-    // than every other point examined, and the second's strictly second (a
-    // point examined twice would tie with itself). Ties by id cannot arise,
-    // so the exact order by (squared, id) is this one. Otherwise (ties, or
-    // distances equal to 2^-36), the exact scan decides.
-    const auto key1 = std::bit_cast<uint64_t>(keys[q].first[0]);
-    const auto key2 = std::bit_cast<uint64_t>(keys[q].second[0]);
-    const auto key3 = std::bit_cast<uint64_t>(keys[q].third[0]);
-    const bool distinct = ((key1 >> kIndexBits) != (key2 >> kIndexBits)) &
-                          ((key2 >> kIndexBits) != (key3 >> kIndexBits));
-    // Every index is a point's or a pad's, so the reads below are in bounds
-    // whether or not the answer stands: no branch until the caller's.
-    const auto i1 = static_cast<uint32_t>(key1 & kIndexMask);
-    const auto i2 = static_cast<uint32_t>(key2 & kIndexMask);
-    const Vec2& p = *queries[q].p;
-    TwoNearest& best = *queries[q].best;
-    best.squared1 = SquaredDistanceFrom(p, Point(i1));
-    best.squared2 = SquaredDistanceFrom(p, Point(i2));
-    const double radius1 = queries[q].radius1;
-    // Else phase 2 is needed (or a pad is among the two).
-    const bool within = best.squared2 <= radius1 * radius1;
-    best.id1 = ids_[i1];
-    best.id2 = ids_[i2];
-    // Each point as one 16-byte store: the caller reads it so, and one built
-    // from two 8-byte stores would stall that read (no store forwarding).
-    const Pair point1 = {xs_[i1], ys_[i1]}, point2 = {xs_[i2], ys_[i2]};
-    best.point1 = std::bit_cast<Vec2>(point1);
-    best.point2 = std::bit_cast<Vec2>(point2);
-    certified |= static_cast<unsigned>(distinct & within) << q;
+  for (int pair = 0; pair < kPairs; ++pair) {
+    // Lanes: position 0's first and second, position 1's first and second;
+    // and the same positions' second and third.
+    const Floats4 low = FirstLanesOfHalves(keys[pair].first, keys[pair].second);
+    const Floats4 high = FirstLanesOfHalves(keys[pair].second, keys[pair].third);
+    // Apart: high > low (1 + 2^-11) + 2^-11 on the truncated values, so the
+    // exact distances order as the keys do (docs/noise.md, "The paired pass").
+    const Floats4Bits low_bits = reinterpret_cast<Floats4Bits>(low);
+    const Floats4 low_value = reinterpret_cast<Floats4>(low_bits & ~kPairIndexMask);
+    const Floats4 high_value =
+        reinterpret_cast<Floats4>(reinterpret_cast<Floats4Bits>(high) & ~kPairIndexMask);
+    const Floats4 margin = {0x1.0p-11f, 0x1.0p-11f, 0x1.0p-11f, 0x1.0p-11f};
+    const Floats4 scale = {1 + 0x1.0p-11f, 1 + 0x1.0p-11f, 1 + 0x1.0p-11f, 1 + 0x1.0p-11f};
+    const unsigned apart = FloatLanesSet(high_value > low_value * scale + margin);
+    const Floats4Bits index = low_bits & kPairIndexMask;
+    for (int q = 0; q < 2; ++q) {
+      const bool within = TakeFound(queries[2 * pair + q], index[2 * q], index[2 * q + 1]);
+      const bool ordered = ((apart >> (2 * q)) & 3) == 3;
+      certified |= static_cast<unsigned>(ordered & within) << (2 * pair + q);
+    }
   }
   return certified;
 }
 
 bool NearestSearchGrid::FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1,
                                               TwoNearest& best) const {
-  const BlockQuery query{&p, cx, cy, radius1, &best};
-  return FindInBlocksQuickly<2, 1>(&query) != 0;
+  const BlockQuery query{.p = &p, .best = &best, .cell = cy * kSide + cx, .radius1 = radius1};
+  return FindInBlockQuickly<2>(query);
+}
+
+template <typename CellFloats>
+SCALLOP_INLINE bool NearestSearchGrid::LocatePair(BlockQuery* queries, CellFloats& g_floats) const {
+  const Pair a = LoadPair(*queries[0].p), b = LoadPair(*queries[1].p);
+  const Pair origin = std::bit_cast<Pair>(origin_);
+  const Quad g = (__builtin_shufflevector(a, b, 0, 1, 2, 3) -
+                  __builtin_shufflevector(origin, origin, 0, 1, 0, 1)) *
+                 Broadcast4(inverse_cell_);
+  const QuadBits inside = (g >= Broadcast4(1)) & (g < Broadcast4(kSide - 1));
+  if (!BothLanes(__builtin_shufflevector(inside, inside, 0, 1) &
+                 __builtin_shufflevector(inside, inside, 2, 3))) {
+    return false;
+  }
+  // The radius has Covered's bits, its terms being exact: c = floor(g) >= 1,
+  // so f = g - c is exact (Sterbenz), and 1 - f and 1 + either are multiples
+  // of g's ulp in [0, 2]. Then min(g - (c - 1), (c + 2) - g) over both axes
+  // is 1 + min(f, 1 - f).
+  const QuadCells c = __builtin_convertvector(g, QuadCells);
+  const Quad f = g - __builtin_convertvector(c, Quad);
+  const Quad rest = Broadcast4(1) - f;
+  const Quad nearer = f < rest ? f : rest;
+  const Quad other = __builtin_shufflevector(nearer, nearer, 1, 0, 3, 2);
+  const Quad radius =
+      (Broadcast4(1) + (nearer < other ? nearer : other)) * Broadcast4(cell_) - Broadcast4(slack_);
+  for (int q = 0; q < 2; ++q) {
+    queries[q].radius1 = radius[2 * q];
+    queries[q].cell = c[2 * q + 1] * kSide + c[2 * q];
+  }
+  g_floats = __builtin_convertvector(g, CellFloats);
+  return true;
+}
+
+namespace {
+// The basis from a certified quick pass, its square roots in one instruction.
+SCALLOP_INLINE void StoreBasis(const TwoNearest& best, NearestPoint& out) {
+  const Pair f = SquareRoots(Pair{best.squared1, best.squared2});
+  out = {.id = best.id1,
+         .position = best.point1,
+         .f1 = f[0],
+         .f2 = f[1],
+         .second_id = best.id2,
+         .cell_value = CellValue(best.id1)};
+}
+}  // namespace
+
+template <int kLanes>
+SCALLOP_INLINE void NearestSearchGrid::Finish(std::span<const IndexedPosition> positions,
+                                              uint32_t k, const TwoNearest* best,
+                                              unsigned certified, uint32_t entries,
+                                              NearestPoint* results,
+                                              std::vector<uint32_t>& refused) const {
+  for (uint32_t q = 0; q < entries; ++q) {
+    if (certified & (1u << q)) {
+      StoreBasis(best[q], results[positions[k + q].index]);
+    } else {
+      AnswerExactly(positions[k + q], k + q, results, refused);
+    }
+  }
+}
+
+template <int kLanes>
+SCALLOP_INLINE void NearestSearchGrid::AnswerPair(std::span<const IndexedPosition> positions,
+                                                  uint32_t k, NearestPoint* results,
+                                                  std::vector<uint32_t>& refused) const {
+  TwoNearest best[2];
+  BlockQuery queries[2] = {{.p = &positions[k].position, .best = &best[0]},
+                           {.p = &positions[k + 1].position, .best = &best[1]}};
+  Floats4 g = {};
+  const unsigned certified = paired_ && LocatePair(queries, g)
+                                 ? FindPairsQuickly<2 * kLanes, 1>(queries, &g)
+                                 : kAnswerEachAlone;
+  if (certified == kAnswerEachAlone) [[unlikely]] {
+    AnswerAlone(positions[k], k, results, refused);
+    AnswerAlone(positions[k + 1], k + 1, results, refused);
+    return;
+  }
+  Finish<kLanes>(positions, k, best, certified, 2, results, refused);
 }
 
 template <int kLanes>
@@ -327,41 +608,28 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosit
                                                     std::vector<uint32_t>& refused) const {
   const auto count = static_cast<uint32_t>(positions.size());
   uint32_t k = 0;
-  for (; k + 2 <= count; k += 2) {
-    const IndexedPosition& entry0 = positions[k];
-    const IndexedPosition& entry1 = positions[k + 1];
-    const auto [gx0, gy0] = CellCoordinates(entry0.position);
-    const auto [gx1, gy1] = CellCoordinates(entry1.position);
-    if (!(quick_ && BlockInGrid(gx0, gy0) && BlockInGrid(gx1, gy1))) [[unlikely]] {
-      AnswerAlone(entry0, k, results, refused);
-      AnswerAlone(entry1, k + 1, results, refused);
-      continue;
-    }
-    const int cx0 = static_cast<int>(gx0), cy0 = static_cast<int>(gy0);  // floor: all >= 1
-    const int cx1 = static_cast<int>(gx1), cy1 = static_cast<int>(gy1);
-    TwoNearest best[2];
-    const BlockQuery queries[2] = {
-        {&entry0.position, cx0, cy0, Covered(gx0, gy0, cx0 - 1, cx0 + 1, cy0 - 1, cy0 + 1),
-         &best[0]},
-        {&entry1.position, cx1, cy1, Covered(gx1, gy1, cx1 - 1, cx1 + 1, cy1 - 1, cy1 + 1),
-         &best[1]}};
-    const unsigned certified = FindInBlocksQuickly<kLanes, 2>(queries);
+  // Two pairs at once: each pair's pass is one chain of dependent steps, and
+  // two chains side by side keep the CPU busy where one waited (three spilled
+  // registers and lost a fifth). In AVX2 only: in SSE2, whose vectors hold
+  // half as much, two pairs spilled and halved the speed.
+  constexpr bool kTwoPairs = kLanes == 4;
+  for (; kTwoPairs && k + 4 <= count; k += 4) {
+    TwoNearest best[4];
+    BlockQuery queries[4];
+    for (int q = 0; q < 4; ++q) queries[q] = {.p = &positions[k + q].position, .best = &best[q]};
+    Floats4 g[2] = {};
+    const bool located = LocatePair(queries, g[0]) & LocatePair(queries + 2, g[1]);
+    const unsigned certified =
+        paired_ && located ? FindPairsQuickly<2 * kLanes, 2>(queries, g) : kAnswerEachAlone;
     if (certified == kAnswerEachAlone) [[unlikely]] {
-      AnswerAlone(entry0, k, results, refused);
-      AnswerAlone(entry1, k + 1, results, refused);
+      // A long row or a block leaving the grid in one pair: each pair alone.
+      AnswerPair<kLanes>(positions, k, results, refused);
+      AnswerPair<kLanes>(positions, k + 2, results, refused);
       continue;
     }
-    if (certified & 1u) {
-      results[entry0.index] = ToNearestPoint(best[0]);
-    } else {
-      AnswerExactly(entry0, k, results, refused);
-    }
-    if (certified & 2u) {
-      results[entry1.index] = ToNearestPoint(best[1]);
-    } else {
-      AnswerExactly(entry1, k + 1, results, refused);
-    }
+    Finish<kLanes>(positions, k, best, certified, 4, results, refused);
   }
+  for (; k + 2 <= count; k += 2) AnswerPair<kLanes>(positions, k, results, refused);
   if (k < count) AnswerAlone(positions[k], k, results, refused);
 }
 
@@ -405,8 +673,8 @@ void NearestSearchGrid::AnswerEachInTwoLanes(std::span<const IndexedPosition> po
 #if defined(__x86_64__) || defined(__i386__)
 __attribute__((target("avx2"))) bool NearestSearchGrid::FindInBlockInFourLanes(
     const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const {
-  const BlockQuery query{&p, cx, cy, radius1, &best};
-  return FindInBlocksQuickly<4, 1>(&query) != 0;
+  const BlockQuery query{.p = &p, .best = &best, .cell = cy * kSide + cx, .radius1 = radius1};
+  return FindInBlockQuickly<4>(query);
 }
 
 __attribute__((target("avx2"))) void NearestSearchGrid::AnswerEachInFourLanes(

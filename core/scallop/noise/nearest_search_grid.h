@@ -92,7 +92,7 @@ class NearestSearchGrid {
   // `points` must hold every point of the world in CoveredSquare grown by
   // 1 d (so rounding at the edges cannot lose one). REQUIRES: min_distance
   // valid (world.h), ids.size() == points.size(), ids distinct.
-  // Cost: O(points); about 12 KB for an A3 region.
+  // Cost: O(points); about 16 KB for an A3 region.
   NearestSearchGrid(double min_distance, RegionKey key, std::span<const Vec2> points,
                     std::span<const uint64_t> ids, FirstPassWidth width = FirstPassWidth::kWidest);
 
@@ -119,11 +119,11 @@ class NearestSearchGrid {
   // FindTwoNearest of each entry, its answer (ToNearestPoint) written to
   // results[entry.index] when certified; the offsets in `positions` of the
   // entries it cannot certify are appended to `refused`, their results left
-  // alone. The same answers to the bit as FindTwoNearest, and about a fifth
-  // faster than a call of it a position: one call for a batch keeps the
-  // search's constants in registers, and the first passes run two positions
-  // side by side, two independent chains of loads and compares
-  // (docs/noise.md, "Answering a batch").
+  // alone. The same answers to the bit as FindTwoNearest, and faster than a
+  // call of it a position: one call for a batch keeps the search's constants
+  // in registers, a pair of positions shares one vector of float keys, and
+  // two pairs run side by side, two independent chains of loads and
+  // compares (docs/noise.md, "The paired pass", "Answering a batch").
   // REQUIRES: every entry's index < results.size().
   void AnswerEach(std::span<const IndexedPosition> positions, std::span<NearestPoint> results,
                   std::vector<uint32_t>& refused) const;
@@ -142,26 +142,52 @@ class NearestSearchGrid {
   double Covered(double gx, double gy, int x_lo, int x_hi, int y_lo, int y_hi) const;
   // Phases 1 and 2 with OfferCandidate: exact whatever the ties.
   bool FindTwoNearestExactly(const Vec2& p, double gx, double gy, TwoNearest& best) const;
-  // Phase 1 without branches on the data, kLanes keys at a time, for when
-  // its answer is certified and free of near-ties; false sends the caller to
-  // the exact scan. Inlined into the two entry points below, the second
-  // compiled for AVX2.
-  // One position's phase 1: p's cell (cx, cy) and the radius its block covers.
+  // One position's phase 1: p's cell (row-major index) and the radius its block covers.
   struct BlockQuery {
     const Vec2* p;
-    int cx, cy;
-    double radius1;
     TwoNearest* best;
+    int cell = 0;
+    double radius1 = 0;
   };
-  // Bit q of the result: queries[q] is certified (kPositions of them side by
-  // side); or, for several, kAnswerEachAlone: a row of a block is longer than
-  // the pass reads, so each position wants the one-position pass.
+  // Fills the cell and radius1 (Covered, to the same bits) of the two
+  // queries of a pair, all four axes in one vector; false when either's
+  // block leaves the grid (BlockInGrid) or its position is NaN. g gets both
+  // positions' cell coordinates (CellCoordinates) as four floats, x and y
+  // of each.
+  template <typename CellFloats>
+  bool LocatePair(BlockQuery* queries, CellFloats& g) const;
+  // Phase 1 without branches on the data, kLanes double keys at a time, for
+  // when its answer is certified and free of near-ties; false sends the
+  // caller to the exact scan. Inlined into the entry points below (the
+  // four-lane ones compiled for AVX2).
+  template <int kLanes>
+  bool FindInBlockQuickly(const BlockQuery& query) const;
+  // A quick pass's two found, points i1 and i2 (in bounds: points or pads),
+  // into *query.best with their exact squared distances; whether the second
+  // lies within the radius the block covers.
+  bool TakeFound(const BlockQuery& query, uint32_t i1, uint32_t i2) const;
+  // Phase 1 for two positions at once, in float keys (kLanes of them, half
+  // a position's), trusted where the three smallest of each are apart by
+  // more than float rounding can blur (docs/noise.md, "The paired pass").
+  // Bit q of the result: queries[q] is certified; or kAnswerEachAlone: a row
+  // of a block is longer than the pass reads, so each position wants the
+  // one-position pass.
   static constexpr unsigned kAnswerEachAlone = 1u << 31;
-  template <int kLanes, int kPositions>
-  unsigned FindInBlocksQuickly(const BlockQuery* queries) const;
+  template <int kLanes, int kPairs, typename CellFloats>
+  unsigned FindPairsQuickly(const BlockQuery* queries, const CellFloats* g) const;
   bool FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
   bool FindInBlockInFourLanes(const Vec2& p, int cx, int cy, double radius1,
                               TwoNearest& best) const;
+  // Entries k and k + 1 of AnswerEach, through one pass of FindPairsQuickly.
+  template <int kLanes>
+  void AnswerPair(std::span<const IndexedPosition> positions, uint32_t k, NearestPoint* results,
+                  std::vector<uint32_t>& refused) const;
+  // The answers of entries k .. k + entries - 1 from a quick pass's bits
+  // (bit q for entry k + q) and `best`, or by the exact phases.
+  template <int kLanes>
+  void Finish(std::span<const IndexedPosition> positions, uint32_t k, const TwoNearest* best,
+              unsigned certified, uint32_t entries, NearestPoint* results,
+              std::vector<uint32_t>& refused) const;
   // AnswerEach with kLanes lanes, inlined into the two entry points below.
   template <int kLanes>
   void AnswerEachIn(std::span<const IndexedPosition> positions, NearestPoint* results,
@@ -196,9 +222,15 @@ class NearestSearchGrid {
   // The points' coordinates, apart so that four load at once: bucketed by
   // cell, then a few far pads (.cc).
   std::vector<double> xs_, ys_;
+  // The same points in cell units as floats (pads far), for FindPairsQuickly.
+  std::vector<float> cell_xs_, cell_ys_;
   std::vector<uint64_t> ids_;  // ids_[k] is the id of point k
-  bool quick_ = false;         // point indices fit FindInBlockQuickly's keys
-  bool four_lanes_ = false;    // FindInBlockInFourLanes, not ...TwoLanes
+  // Per cell, 1 when a row of its 3x3 block holds more points than the
+  // quick pass reads (1% of rows): one load a position instead of three ends.
+  std::vector<uint8_t> long_block_;
+  bool quick_ = false;       // point indices fit FindInBlockQuickly's keys
+  bool paired_ = false;      // and FindPairsQuickly's
+  bool four_lanes_ = false;  // FindInBlockInFourLanes, not ...TwoLanes
 };
 
 // Inline: one call per position, and a call kept `best` in memory between
