@@ -14,12 +14,16 @@
 #include "scallop/plane/point_id.h"
 #include "scallop/plane/query_rect.h"
 #include "scallop/plane/region_exclusions.h"
+#include "scallop/plane/region_scratch.h"
 #include "scallop/plane/world_layers.h"
 
 namespace scallop {
 
 PlaneEngine::PlaneEngine(const PlaneEngineOptions& options)
-    : options_(options), cache_(options.cache_bytes) {
+    : options_(options),
+      cache_(options.cache_bytes),
+      // One a generating thread: the pool's, and callers generating on their own.
+      scratch_(static_cast<size_t>(options.threads) + 8) {
   if (options_.threads > 1) {
     pool_ = std::make_unique<boost::asio::thread_pool>(static_cast<size_t>(options_.threads));
   }
@@ -155,11 +159,14 @@ std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
                                              : plan[planned.at(dependency)].region.get());
     }
     const auto disks = exclusions.find(key);
+    std::unique_ptr<RegionScratch> scratch = scratch_.Take();
     if (options_.observer != nullptr) options_.observer->Started(world, key);
-    auto region = std::make_shared<const RegionPoints>(GenerateRegion(
-        world, key, neighbours,
-        disks == exclusions.end() ? std::span<const ExclusionDisk>{} : disks->second));
+    auto region = std::make_shared<const RegionPoints>(
+        GenerateRegion(world, key, neighbours,
+                       disks == exclusions.end() ? std::span<const ExclusionDisk>{} : disks->second,
+                       scratch.get()));
     if (options_.observer != nullptr) options_.observer->Finished(world, key);
+    scratch_.Return(std::move(scratch));
     cache_.Publish(world, key, region);
     set(n, std::move(region));
     done.count_down();  // last: the caller may return once every region counted down
