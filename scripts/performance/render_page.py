@@ -590,7 +590,7 @@ def splice_apart(sections, run, title, page_path, reason):
         sys.exit(1)
     start = page.index(heading) + len(heading)
     end = page.find("\n## ", start)
-    end = len(page) if end < 0 else end + 1
+    end = len(page) if end < 0 else end
     return page[:start] + apart_note(run, reason) + text + page[end:]
 
 
