@@ -3,6 +3,7 @@
 #include "scallop/plane/plane_engine.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <boost/asio/post.hpp>
 #include <boost/asio/thread_pool.hpp>
@@ -152,17 +153,18 @@ std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
   };
   generate = [&](size_t n) {
     const RegionKey key = plan[n].key;
-    std::vector<const RegionPoints*> neighbours;
+    std::array<const RegionPoints*, 8> neighbours;  // in place: no allocation a region
+    size_t neighbour_count = 0;
     for (const RegionKey& dependency : LowerRankedNeighbours(key)) {
       const auto it = ready.find(dependency);
-      neighbours.push_back(it != ready.end() ? it->second.get()
-                                             : plan[planned.at(dependency)].region.get());
+      neighbours[neighbour_count++] =
+          it != ready.end() ? it->second.get() : plan[planned.at(dependency)].region.get();
     }
     const auto disks = exclusions.find(key);
     std::unique_ptr<RegionScratch> scratch = scratch_.Take();
     if (options_.observer != nullptr) options_.observer->Started(world, key);
     auto region = std::make_shared<const RegionPoints>(
-        GenerateRegion(world, key, neighbours,
+        GenerateRegion(world, key, std::span(neighbours.data(), neighbour_count),
                        disks == exclusions.end() ? std::span<const ExclusionDisk>{} : disks->second,
                        scratch.get()));
     if (options_.observer != nullptr) options_.observer->Finished(world, key);
