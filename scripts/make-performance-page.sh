@@ -110,11 +110,14 @@ if [[ -n $only ]]; then
   exit 0
 fi
 
-# bench NAME [ARGS...]: runs a Google Benchmark program into NAME.json.
+# bench NAME [ARGS...]: runs a Google Benchmark program into NAME.json (with the page's
+# repetitions, unless ARGS set their own).
 bench() {
   local name=$1
   shift
-  local args=(--benchmark_repetitions="$repetitions" --benchmark_report_aggregates_only=true "$@")
+  local repeat=(--benchmark_repetitions="$repetitions")
+  [[ " $* " == *" --benchmark_repetitions="* ]] && repeat=()
+  local args=("${repeat[@]}" --benchmark_report_aggregates_only=true "$@")
   commands[$name]="$build/bench/$name ${args[*]}"
   echo "== $name" >&2
   "$build/bench/$name" "${args[@]}" --benchmark_out="$results/$name.json" \
@@ -138,7 +141,7 @@ if ((quick)); then
 else
   bench samplers_bench
   bench field_bench --benchmark_filter='1M|250k'
-  bench layers_bench --benchmark_filter=250k
+  bench layers_bench --benchmark_filter=250k --benchmark_enable_random_interleaving=true --benchmark_repetitions=5
   bench plane_bench
   bench nearest_bench
   bench deterministic_math_bench

@@ -478,7 +478,7 @@ TEST(DiskArcTest, DisksBinsDroppedInBuildLeaveTheRangesOfCuttingEveryArc) {
 // it before the disks are searched or not; leaving a point or a disk out is caught.
 TEST(DiskArcTest, CutAroundDiskLeavesTheRangesOfCuttingEveryArc) {
   Rng rng(25);
-  int empty = 0, with_ranges = 0, caught = 0, tried = 0;
+  int empty = 0, with_ranges = 0, caught = 0, tried = 0, settled_by_points = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     const double d = 1.0;
     const Place place = RandomPlace(rng, trial);
@@ -501,8 +501,8 @@ TEST(DiskArcTest, CutAroundDiskLeavesTheRangesOfCuttingEveryArc) {
     if (rng.Uniform() < 0.5) start.SubtractArc(AwkwardKey(rng), AwkwardKey(rng));
     AvailableBoundary built = start;
     exclusions.CutAroundDisk(k, points, built);
-    const auto cut_every = [&](size_t skip_disk, size_t skip_point) {
-      AvailableBoundary expected = start;
+    const auto cut_every = [&](size_t skip_disk, size_t skip_point, const AvailableBoundary& from) {
+      AvailableBoundary expected = from;
       for (size_t j = 0; j < exclusions.size(); ++j) {
         KeyArc arc{0, 0};
         const DiskCover cover = j == k || j == skip_disk
@@ -522,20 +522,29 @@ TEST(DiskArcTest, CutAroundDiskLeavesTheRangesOfCuttingEveryArc) {
       }
       return expected;
     };
-    ASSERT_TRUE(SameRanges(built, cut_every(SIZE_MAX, SIZE_MAX))) << "trial " << trial;
+    ASSERT_TRUE(SameRanges(built, cut_every(SIZE_MAX, SIZE_MAX, start))) << "trial " << trial;
+    // The first step's verdict alone settles the circle for any start (a pocket's clip): when
+    // the points' bins cover it, cutting every arc from the whole circle leaves nothing.
+    if (!exclusions.GatherAroundDisk(k, points)) {
+      AvailableBoundary whole;
+      whole.Reset();
+      ASSERT_TRUE(cut_every(SIZE_MAX, SIZE_MAX, whole).empty()) << "trial " << trial;
+      ++settled_by_points;
+    }
     empty += built.empty();
     with_ranges += !built.empty();
     if (!points.empty()) {
       ++tried;
-      caught += !SameRanges(built, cut_every(SIZE_MAX, rng.Below(points.size())));
+      caught += !SameRanges(built, cut_every(SIZE_MAX, rng.Below(points.size()), start));
     }
     if (exclusions.size() > 1) {
       ++tried;
       size_t skip = rng.Below(exclusions.size() - 1);
       skip += skip >= k;
-      caught += !SameRanges(built, cut_every(skip, SIZE_MAX));
+      caught += !SameRanges(built, cut_every(skip, SIZE_MAX, start));
     }
   }
+  EXPECT_GT(settled_by_points, 20);
   EXPECT_GT(empty, 400);
   EXPECT_GT(with_ranges, 1500);
   EXPECT_GT(caught, tried / 5);

@@ -237,7 +237,9 @@ def layered_worlds(run):
         "\"Empty\" is each layer's largest slack min(|x - q| - d, |x - c| - D) over the central\n"
         "150 x 150, probed every d / 20: positive means a point of that layer still fits (the layer\n"
         "is not maximal). Targets (issue 19): at least 0.5x the one-layer world, at least the\n"
-        "studios' speed, maximal where they are not.\n\n",
+        "studios' speed, maximal where they are not. Each row's repetitions run interleaved at\n"
+        "random with the other rows' (medians shown), so that a change of load between rows moves\n"
+        "them alike: the layered rows are the most memory-bound of the page and move the most.\n\n",
         "| world | points | points/s | against uniform | empty trees | empty bushes |"
         " empty rocks |\n",
         "|---|---|---|---|---|---|---|\n",

@@ -229,32 +229,35 @@ std::optional<std::vector<RegionHandle>> PlaneEngine::CachedRegions(const World&
 }
 
 StatusOr<PlanePoints> PlaneEngine::Points(const World& world, const Rect& rect, LayerMask layers) {
-  if (const WorldLayers* world_layers = world.layers()) {
-    if (Status status = ValidateQuery(world, rect); !status.ok()) return status;
-    PlanePoints result;
-    for (int k = 0; k < world_layers->count(); ++k) {
-      if (((layers >> k) & 1) == 0) continue;
-      StatusOr<PlanePoints> layer = Points(world_layers->world(k), rect);
-      if (!layer.ok()) return layer.status();
-      result.positions.insert(result.positions.end(), layer->positions.begin(),
-                              layer->positions.end());
-      result.ids.insert(result.ids.end(), layer->ids.begin(), layer->ids.end());
-      result.layers.resize(result.positions.size(), static_cast<uint8_t>(k));
-    }
-    return result;
-  }
-  StatusOr<std::vector<RegionHandle>> regions = Regions(world, rect);
-  if (!regions.ok()) return regions.status();
+  if (Status status = ValidateQuery(world, rect); !status.ok()) return status;
+  // Each part's regions first (a layered world's layers asked for, in order, or the world's
+  // own), so that the answer is sized once and every point is copied once: growing it layer by
+  // layer copied the earlier layers' points again and took fresh pages at each step.
+  const WorldLayers* world_layers = world.layers();
+  std::vector<std::pair<int, std::vector<RegionHandle>>> parts;
   size_t upper_bound = 0;
-  for (const RegionHandle& region : *regions) upper_bound += region->points.size();
+  for (int k = 0; k < (world_layers ? world_layers->count() : 1); ++k) {
+    if (world_layers && ((layers >> k) & 1) == 0) continue;
+    const World& own = world_layers ? world_layers->world(k) : world;
+    if (Status status = world_layers ? ValidateQuery(own, rect) : Status(); !status.ok()) {
+      return status;
+    }
+    std::vector<RegionHandle> regions = Resolve(own, RegionsOverlapping(own, rect));
+    for (const RegionHandle& region : regions) upper_bound += region->points.size();
+    parts.emplace_back(k, std::move(regions));
+  }
   PlanePoints result;
   result.positions.reserve(upper_bound);
   result.ids.reserve(upper_bound);
-  VisitPoints(*regions, RegionLayout(world), rect, 0, upper_bound,
-              [&](const Vec2& position, uint64_t id) {
-                result.positions.push_back(position);
-                result.ids.push_back(id);
-              });
+  for (const auto& [k, regions] : parts) {
+    const World& own = world_layers ? world_layers->world(k) : world;
+    VisitPoints(regions, RegionLayout(own), rect, 0, upper_bound,
+                [&](const Vec2& position, uint64_t id) {
+                  result.positions.push_back(position);
+                  result.ids.push_back(id);
+                });
+    if (world_layers) result.layers.resize(result.positions.size(), static_cast<uint8_t>(k));
+  }
   return result;
 }
 

@@ -28,6 +28,7 @@ BoundaryExclusions::BoundaryExclusions(std::span<const ExclusionDisk> disks, dou
                                        double spacing, double max_abs_coordinate)
     : spacing_(spacing) {
   std::vector<Disk> given;
+  given.reserve(disks.size());
   for (const ExclusionDisk& disk : disks) {
     if (!(disk.radius > 0.0)) continue;
     // Disks come layer by layer, so the last radius is nearly always the one.
@@ -169,23 +170,25 @@ void BoundaryExclusions::Cut(AvailableBoundary& boundary) const {
   }
 }
 
-void BoundaryExclusions::CutAroundDisk(size_t k, std::span<const Vec2> points,
-                                       AvailableBoundary& boundary) {
-  const Vec2& centre = disks_[k].centre;
-  const Radius& circle = radii_[disks_[k].radius];
+bool BoundaryExclusions::GatherAroundDisk(size_t k, std::span<const Vec2> points) {
+  const Disk& disk = disks_[k];
+  const Radius& circle = radii_[disk.radius];
   StartSearch(circle.cut);
   // The points' arcs first: they cover nearly every disk's circle (by their bins alone), and
   // then the other disks are not searched.
-  bool whole = false;
   const double meets = circle.cut + spacing_, scale = 16.0 / circle.cut;
-  for (size_t n = 0; n < points.size() && !whole; ++n) {
-    const Vec2 offset = points[n] - centre;
+  for (const Vec2& point : points) {
+    const Vec2 offset = point - disk.centre;
     if (SquaredLength(offset) >= meets * meets) continue;
-    whole = !AddArc(offset, scale, spacing_, circle.point_from_here);
+    if (!AddArc(offset, scale, spacing_, circle.point_from_here)) return false;
   }
-  whole = whole || (boundary.BinsMet() & ~GatheredCoveredBins()) == 0 ||
-          !AddDisksNear(centre, circle.from_disk.data(), k);
-  if (whole) {
+  return GatheredCoveredBins() != ~uint64_t{0};
+}
+
+void BoundaryExclusions::CutGatheredDisk(size_t k, AvailableBoundary& boundary) {
+  const Disk& disk = disks_[k];
+  if ((boundary.BinsMet() & ~GatheredCoveredBins()) == 0 ||
+      !AddDisksNear(disk.centre, radii_[disk.radius].from_disk.data(), k)) {
     boundary.Clear();
     return;
   }

@@ -75,7 +75,21 @@ class BoundaryExclusions {
 
   // The same for the circle of disk k (its cut radius), with the other disks and the disks of
   // radius `spacing` about those of `points` within reach of it.
-  void CutAroundDisk(size_t k, std::span<const Vec2> points, AvailableBoundary& boundary);
+  void CutAroundDisk(size_t k, std::span<const Vec2> points, AvailableBoundary& boundary) {
+    if (GatherAroundDisk(k, points)) {
+      CutGatheredDisk(k, boundary);
+    } else {
+      boundary.Clear();
+    }
+  }
+
+  // CutAroundDisk in two steps, so that a circle the points' disks cover (9 pockets in 10 in a
+  // forest) is settled before its boundary is built: first the points' arcs on disk k's circle,
+  // remembered for the call below (false: their bins cover the whole circle, so nothing is left
+  // of it, whatever else is cut)...
+  bool GatherAroundDisk(size_t k, std::span<const Vec2> points);
+  // ... then the other disks' arcs, and all the arcs removed from `boundary`.
+  void CutGatheredDisk(size_t k, AvailableBoundary& boundary);
 
   // Whether a disk remembered by the last Cut call holds x: dx^2 + dy^2 < D^2 in doubles, the
   // verifier's expression with D as given. REQUIRES: x on (or within rounding of) that call's

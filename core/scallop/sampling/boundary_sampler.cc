@@ -118,12 +118,15 @@ void PlaceOnDiskCircle(const SamplingProblem& problem, double spacing,
                        AvailableBoundary& boundary, AddPoint add_point) {
   const Vec2 c = exclusions.centre(disk);
   const double radius = exclusions.cut_radius(disk);
-  arcs.clear();
-  if (!ClipToRectangle(area, c, radius, arcs)) return;
   const double reach = radius + spacing;
   size_t nearby_count = grid.GatherNear(c, reach, reach * reach, -1, nearby);
+  // Most circles are covered by the points' disks alone, whatever the rectangle clips: settled
+  // before the clip and the boundary are computed (no draw is made either way).
+  if (!exclusions.GatherAroundDisk(disk, std::span(nearby.data(), nearby_count))) return;
+  arcs.clear();
+  if (!ClipToRectangle(area, c, radius, arcs)) return;
   candidate_boundary.Build(c, arcs, {}, boundary);
-  exclusions.CutAroundDisk(disk, std::span(nearby.data(), nearby_count), boundary);
+  exclusions.CutGatheredDisk(disk, boundary);
   const double d_squared = problem.min_distance * problem.min_distance;
   int rejected = 0;  // in a row
   while (!boundary.empty()) {
