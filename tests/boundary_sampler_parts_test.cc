@@ -108,7 +108,10 @@ TEST(BoundarySamplerPartsTest, GatherNearMatchesForEachNearAndTheDistanceTest) {
 // BoundaryGrid, A3's tiled grid for rectangles, must gather what PointGrid
 // gathers: the same positions (in its own cells' order: A3 does not depend
 // on the order), on grids of many tiles and of one, near the edges and with
-// cells on both sides of a tile's edge.
+// cells on both sides of a tile's edge. Odd trials reuse one grid, Reset to
+// the trial's domain from the last odd trial's (larger or smaller), filled
+// with other points there and Reset again, as a plane region's run reuses
+// the grid of the run before it.
 // The first `count` positions of `points`, sorted by x, then y.
 std::vector<Vec2> Sorted(const std::vector<Vec2>& points, size_t count) {
   std::vector<Vec2> sorted(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(count));
@@ -119,6 +122,7 @@ std::vector<Vec2> Sorted(const std::vector<Vec2>& points, size_t count) {
 
 TEST(BoundarySamplerPartsTest, BoundaryGridGathersWhatPointGridGathers) {
   Rng dice(HashWords({43}));
+  BoundaryGrid reused({0, 0, 1, 1}, 1.0, 0.0);
   for (int trial = 0; trial < 24; ++trial) {
     const double d = dice.Uniform(0.3, 2.0);
     const double x0 = dice.Uniform(-50, 50), y0 = dice.Uniform(-50, 50);
@@ -128,7 +132,16 @@ TEST(BoundarySamplerPartsTest, BoundaryGridGathersWhatPointGridGathers) {
     const std::vector<Vec2> points = SpacedPoints(domain, d, dice.NextBits());
     const double margin = dice.Uniform(0, 3) * d;
     PointGrid plain(domain.rect, false, d, margin);
-    BoundaryGrid tiled(domain.rect, d, margin);
+    BoundaryGrid fresh(domain.rect, d, margin);
+    if (trial % 2 == 1) {
+      // Filled with other points of the same domain first: a cell left as it was would
+      // hand its stale point to a query right there.
+      reused.Reset(domain.rect, d, margin);
+      const std::vector<Vec2> others = SpacedPoints(domain, d, dice.NextBits());
+      for (size_t i = 0; i < others.size(); ++i) reused.Insert(static_cast<int32_t>(i), others[i]);
+      reused.Reset(domain.rect, d, margin);
+    }
+    BoundaryGrid& tiled = trial % 2 == 1 ? reused : fresh;
     for (size_t i = 0; i < points.size(); ++i) {
       plain.Insert(static_cast<int32_t>(i), points[i]);
       tiled.Insert(static_cast<int32_t>(i), points[i]);

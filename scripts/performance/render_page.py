@@ -2,6 +2,11 @@
 """Renders docs/performance.md from one run of scripts/make-performance-page.sh.
 
     render_page.py RESULTS_DIR > docs/performance.md
+    render_page.py RESULTS_DIR --apart TITLE PAGE [REASON] > new page
+
+The second form renders section TITLE alone from RESULTS_DIR (a run of that section's
+benchmarks only) into PAGE, in place of the section there, with a line saying it was
+measured apart from the page's run, when, on what and why (ONLY= in make-performance-page.sh).
 
 Exits 1, naming them on stderr, when some sections had no input (the page is written anyway).
 
@@ -299,9 +304,44 @@ def text_section(run, key, description, keep=lambda line: bool(line.strip())):
                    [f"    {line}\n" for line in lines])
 
 
+def cold_tile_pairs():
+    """cold_tile_pairs.txt ("before|after THREADS | <cold_tile_latency's line>", rounds taking
+    turns going first) -> {(which, threads): [(median, p99), ...]} in round order."""
+    runs = {}
+    for line in (read_text("cold_tile_pairs.txt") or "").splitlines():
+        match = re.match(r"(before|after) (\d+) \|.*median ([\d.]+) ms.*p99 ([\d.]+) ms", line)
+        if match:
+            runs.setdefault((match[1], int(match[2])), []).append((float(match[3]),
+                                                                    float(match[4])))
+    return runs
+
+
 def cold_tiles(run):
-    return text_section(run, "cold_tile_latency",
-                        "Thread CPU time of the engine alone for cold 64 d tiles at random places:\n")
+    section = text_section(
+        run, "cold_tile_latency",
+        "The engine alone on cold 64 d tiles at random places (a fresh engine and world a\n"
+        "tile): thread CPU time on one engine thread, and wall time on two, as scallopd's\n"
+        "`--threads 2` (its share of a cold call's latency; target, issue 23: the tile through\n"
+        "scallopd within 5 ms at p99):\n")
+    runs = cold_tile_pairs()
+    if section == MISSING or not runs:
+        return section
+    out = [section, "\n", command_block(run, "cold_tile_pairs"), "\n",
+           "The same against an earlier build (`before`), round by round, taking turns going\n"
+           "first; the ratio is the median of the rounds' ratios:\n\n",
+           "| engine threads | measure | before, ms | after, ms | after / before |\n",
+           "|---|---|---|---|---|\n"]
+    for threads in sorted({t for _, t in runs}):
+        before, after = runs.get(("before", threads), []), runs.get(("after", threads), [])
+        for index, measure in ((0, "median"), (1, "p99")):
+            ratios = sorted(a[index] / b[index] for b, a in zip(before, after))
+            if not ratios:
+                continue
+            middle = ratios[len(ratios) // 2] if len(ratios) % 2 else (
+                ratios[len(ratios) // 2 - 1] + ratios[len(ratios) // 2]) / 2
+            out.append(f"| {threads} | {measure} | {', '.join(f'{b[index]:.2f}' for b in before)} | "
+                       f"{', '.join(f'{a[index]:.2f}' for a in after)} | **{middle:.2f}x** |\n")
+    return "".join(out)
 
 
 def nearest(run):
@@ -546,6 +586,33 @@ def wire_encodings(run):
     return "".join(out) if found else MISSING
 
 
+def apart_note(run, reason):
+    """The line that says a section comes from a run of its own, not the page's."""
+    why = f"; {reason}" if reason else ""
+    return (f"_Measured apart from the run above (commit {run.get('commit', '?')}, "
+            f"{run.get('date', '?')}, on {run.get('cpu', '?')}, load average "
+            f"{run.get('load_before', '?')} before and {run.get('load_after', '?')} after){why}; "
+            "it joins the page's run at its next regeneration._\n\n")
+
+
+def splice_apart(sections, run, title, page_path, reason):
+    """PAGE with section TITLE rendered from RESULTS alone, marked as measured apart."""
+    render = dict(sections).get(title)
+    page = pathlib.Path(page_path).read_text()
+    heading = f"\n## {title}\n\n"
+    if render is None or heading not in page:
+        sys.stderr.write(f"render_page: no section '{title}' to render or to replace\n")
+        sys.exit(2)
+    text = render(run)
+    if text == MISSING:
+        sys.stderr.write(f"render_page: '{title}' not measured in {RESULTS}\n")
+        sys.exit(1)
+    start = page.index(heading) + len(heading)
+    end = page.find("\n## ", start)
+    end = len(page) if end < 0 else end
+    return page[:start] + apart_note(run, reason) + text + page[end:]
+
+
 def main():
     run = load_json("run.json") or {}
     sections = (("Bounded samplers", bounded_samplers), ("Radius fields, bounded", radius_fields),
@@ -583,6 +650,13 @@ Release build (`-O3 -DNDEBUG -ffp-contract=off`), Google Benchmark medians of
 How each figure got where it is (what was tried, what paid and what did not) is in the
 history of this page and the commit messages: `git log -p docs/performance.md`.
 """
+    if "--apart" in sys.argv:
+        # render_page.py RESULTS --apart TITLE PAGE [REASON]: PAGE with that section replaced.
+        at = sys.argv.index("--apart")
+        title, page_path = sys.argv[at + 1], sys.argv[at + 2]
+        reason = sys.argv[at + 3] if len(sys.argv) > at + 3 else ""
+        sys.stdout.write(splice_apart(sections, run, title, page_path, reason))
+        return
     rendered = [(title, render(run)) for title, render in sections]
     sys.stdout.write(head + "".join(f"\n## {title}\n\n{text}" for title, text in rendered))
     missing = [title for title, text in rendered if text == MISSING]

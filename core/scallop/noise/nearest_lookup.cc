@@ -107,27 +107,9 @@ constexpr size_t kMaxSpareScratch = 8;
 constexpr size_t kMaxScratchPositions = size_t{1} << 20;
 
 NearestLookup::NearestLookup(PlaneEngine& engine, NearestLookupOptions options)
-    : engine_(engine), options_(options) {}
+    : engine_(engine), options_(options), scratch_(kMaxSpareScratch) {}
 
 NearestLookup::~NearestLookup() = default;
-
-std::unique_ptr<NearestLookup::Scratch> NearestLookup::TakeScratch() {
-  {
-    std::lock_guard lock(mutex_);
-    if (!spare_scratch_.empty()) {
-      std::unique_ptr<Scratch> scratch = std::move(spare_scratch_.back());
-      spare_scratch_.pop_back();
-      return scratch;
-    }
-  }
-  return std::make_unique<Scratch>();
-}
-
-void NearestLookup::ReturnScratch(std::unique_ptr<Scratch> scratch) {
-  if (scratch->sorted.capacity() > kMaxScratchPositions) return;
-  std::lock_guard lock(mutex_);
-  if (spare_scratch_.size() < kMaxSpareScratch) spare_scratch_.push_back(std::move(scratch));
-}
 
 Status NearestLookup::ValidatePosition(const World& world, Vec2 position, size_t index) {
   const double limit = RegionLayout(world).precision_limit();
@@ -186,7 +168,7 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
       if (Status status = answer_by_brute_force(k, positions[k]); !status.ok()) return status;
     }
   } else {
-    std::unique_ptr<Scratch> scratch = TakeScratch();
+    std::unique_ptr<Scratch> scratch = scratch_.Take();
     std::vector<GridHandle> grids;
     std::vector<uint32_t>& starts = scratch->starts;
     if (Status status = AssignGrids(world, positions, grids, scratch->grid_of, starts, stop);
@@ -244,7 +226,7 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
       if (StopNow(stop)) return StopStatus();
       if (Status status = answer_from(g); !status.ok()) return status;
     }
-    ReturnScratch(std::move(scratch));
+    if (scratch->sorted.capacity() <= kMaxScratchPositions) scratch_.Return(std::move(scratch));
   }
   std::lock_guard lock(mutex_);
   stats_.lookups += static_cast<int64_t>(positions.size());

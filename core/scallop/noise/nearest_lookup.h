@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "scallop/base/scratch_pool.h"
 #include "scallop/base/status.h"
 #include "scallop/noise/field_nearest_grid.h"
 #include "scallop/noise/nearest_point.h"
@@ -120,8 +121,6 @@ class NearestLookup {
   };
 
   struct Scratch;  // per-call buffers (.cc)
-  std::unique_ptr<Scratch> TakeScratch();
-  void ReturnScratch(std::unique_ptr<Scratch> scratch);
 
   // The grid each position is answered by: grids[grid_of[k]] for position k
   // (grid_of may be longer than positions; the rest is unspecified), and
@@ -146,7 +145,7 @@ class NearestLookup {
   std::unordered_map<Key, Entry, KeyHash> grids_;  // looked up only: order never reaches output
   std::list<Key> lru_;                             // front: most recently used
   NearestLookupStats stats_;
-  std::vector<std::unique_ptr<Scratch>> spare_scratch_;
+  ScratchPool<Scratch> scratch_;
 };
 
 }  // namespace scallop

@@ -21,6 +21,7 @@ namespace {
 // instead of up to 7.
 std::vector<Rect> OpenRects(const RegionLayout& layout, RegionKey key, const Rect& sampled) {
   std::vector<Rect> open;
+  open.reserve(3);  // at most 3 (above): one allocation
   for (int64_t dj = -1; dj <= 1; ++dj) {
     bool extends_last = false;  // the cell to the left was open too
     for (int64_t di = -1; di <= 1; ++di) {
@@ -96,6 +97,14 @@ size_t IndicesInZone(std::span<const Vec2> own, std::span<const Vec2> spill, con
 
 NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
                                       std::span<const RegionPoints* const> lower_neighbours) {
+  NeighbourPoints gathered;
+  GatherNeighbourPoints(world, key, lower_neighbours, gathered);
+  return gathered;
+}
+
+void GatherNeighbourPoints(const World& world, RegionKey key,
+                           std::span<const RegionPoints* const> lower_neighbours,
+                           NeighbourPoints& gathered) {
   const RegionLayout layout(world);
   // d, or r_max for a field world: the farthest two points can conflict.
   const double d = world.max_spacing();
@@ -111,8 +120,11 @@ NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
   const std::vector<Rect> open = OpenRects(layout, key, sampled);
   const Rect zone = KeepableZone(sampled, open, reach, inert_reach, d);
 
-  NeighbourPoints gathered;
-  std::vector<uint32_t> near;
+  gathered.fixed.clear();
+  gathered.inert.clear();
+  gathered.adopted.clear();
+  gathered.covered.clear();
+  std::vector<uint32_t>& near = gathered.near;
   // Filed without a branch on each point (whether a point is fixed, inert or left out follows
   // no pattern a predictor could learn): each list is sized for every point in the zone, each
   // point written to all three, and each count moved past it only where it belongs. The lists
@@ -162,7 +174,6 @@ NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
   gathered.fixed.resize(fixed_count);
   gathered.inert.resize(inert_count);
   gathered.adopted.resize(adopted_count);
-  return gathered;
 }
 
 }  // namespace scallop

@@ -3,6 +3,7 @@
 // closed to it. See docs/design.md, "Growing regions".
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -21,10 +22,11 @@ inline bool ContainsBranchFree(const Rect& r, Vec2 p) {
 }
 
 struct NeighbourPoints {
-  std::vector<Vec2> fixed;    // constrain and seed: SamplingProblem::fixed_points
-  std::vector<Vec2> inert;    // only constrain: SamplingProblem::inert_points
-  std::vector<Vec2> adopted;  // the neighbours' spill in the region's rectangle
-  std::vector<Rect> covered;  // the neighbours' rectangles: SamplingProblem::covered_rects
+  std::vector<Vec2> fixed;     // constrain and seed: SamplingProblem::fixed_points
+  std::vector<Vec2> inert;     // only constrain: SamplingProblem::inert_points
+  std::vector<Vec2> adopted;   // the neighbours' spill in the region's rectangle
+  std::vector<Rect> covered;   // the neighbours' rectangles: SamplingProblem::covered_rects
+  std::vector<uint32_t> near;  // the gathering's own working list, kept for reuse
 };
 
 // Gathers, for region `key` (sampled on its rectangle grown by
@@ -44,5 +46,10 @@ struct NeighbourPoints {
 // measure only for the few hundred near the region.
 NeighbourPoints GatherNeighbourPoints(const World& world, RegionKey key,
                                       std::span<const RegionPoints* const> lower_neighbours);
+// The same into `gathered`, whose lists are cleared first and keep their
+// memory: for a caller that gathers region after region (RegionScratch).
+void GatherNeighbourPoints(const World& world, RegionKey key,
+                           std::span<const RegionPoints* const> lower_neighbours,
+                           NeighbourPoints& gathered);
 
 }  // namespace scallop

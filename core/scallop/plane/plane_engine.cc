@@ -1,23 +1,30 @@
-// PlaneEngine: query validation, dependency closure, rank-by-rank parallel
-// generation through the shared cache, and assembly of results.
+// PlaneEngine: query validation, dependency closure, generation in dependency
+// order on the engine's threads through the shared cache, and assembly of results.
 #include "scallop/plane/plane_engine.h"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <boost/asio/post.hpp>
 #include <boost/asio/thread_pool.hpp>
+#include <functional>
+#include <future>
 #include <latch>
 #include <map>
-#include <set>
 
 #include "scallop/plane/point_id.h"
 #include "scallop/plane/query_rect.h"
 #include "scallop/plane/region_exclusions.h"
+#include "scallop/plane/region_scratch.h"
 #include "scallop/plane/world_layers.h"
 
 namespace scallop {
 
 PlaneEngine::PlaneEngine(const PlaneEngineOptions& options)
-    : options_(options), cache_(options.cache_bytes) {
+    : options_(options),
+      cache_(options.cache_bytes),
+      // One a generating thread: the pool's, and callers generating on their own.
+      scratch_(static_cast<size_t>(options.threads) + 8) {
   if (options_.threads > 1) {
     pool_ = std::make_unique<boost::asio::thread_pool>(static_cast<size_t>(options_.threads));
   }
@@ -40,83 +47,161 @@ std::vector<RegionKey> PlaneEngine::RegionsOverlapping(const World& world, const
   return keys;
 }
 
+namespace {
+
+// A region of a query's plan that is not ready: ours to generate, or another
+// caller's (`pending`) to await. Written before the schedule starts but for
+// `region` (set once it is generated or awaited, before its dependents hear
+// of it) and `waiting_for` (counted down as its dependencies are set).
+struct PlannedRegion {
+  RegionKey key;
+  std::shared_future<RegionHandle> pending;  // valid: another caller generates it
+  std::vector<size_t> dependents;            // our planned regions that need this one
+  std::atomic<int> waiting_for{0};           // ours: lower-ranked neighbours not yet set
+  RegionHandle region;
+};
+
+}  // namespace
+
 std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
                                                const std::vector<RegionKey>& wanted) {
   // Look up the wanted regions; only those that must be generated pull in
   // their lower-ranked neighbours, so a warm query costs one lookup a region.
-  std::map<RegionKey, RegionHandle> resolved;
-  std::set<RegionKey> to_generate[4];
-  std::vector<std::pair<RegionKey, std::shared_future<RegionHandle>>> pending[4];
-  std::set<RegionKey> seen;
+  std::map<RegionKey, RegionHandle> ready;
+  std::map<RegionKey, size_t> planned;  // key -> its index in `plan`
+  std::vector<std::pair<RegionKey, std::shared_future<RegionHandle>>> lookups;
   std::vector<RegionKey> stack(wanted.rbegin(), wanted.rend());
   while (!stack.empty()) {
     const RegionKey key = stack.back();
     stack.pop_back();
-    if (!seen.insert(key).second) continue;
+    if (ready.contains(key) || planned.contains(key)) continue;
     RegionCache::Lookup lookup = cache_.Acquire(world, key);
     if (lookup.ready) {
-      resolved.emplace(key, std::move(lookup.ready));
-    } else if (!lookup.must_generate) {
-      pending[RegionRank(key)].emplace_back(key, std::move(lookup.pending));
-    } else {
-      to_generate[RegionRank(key)].insert(key);
+      ready.emplace(key, std::move(lookup.ready));
+      continue;
+    }
+    planned.emplace(key, lookups.size());
+    if (lookup.must_generate) {
       for (const RegionKey& n : LowerRankedNeighbours(key)) stack.push_back(n);
     }
+    lookups.emplace_back(key, std::move(lookup.pending));
   }
 
   // A later layer's regions keep clear of the earlier layers' points: those
   // layers' regions are resolved first, here on the calling thread, so the
   // pool never waits on itself and dependencies run down (layer, rank).
   std::map<RegionKey, std::vector<ExclusionDisk>> exclusions;
-  if (world.earlier_layers() != nullptr) {
+  if (world.earlier_layers() != nullptr && !lookups.empty()) {
     std::vector<RegionKey> keys;
-    for (const std::set<RegionKey>& rank : to_generate)
-      keys.insert(keys.end(), rank.begin(), rank.end());
+    for (const auto& [key, pending] : lookups) {
+      if (!pending.valid()) keys.push_back(key);
+    }
     exclusions = RegionExclusions(
         world, keys, [this](const World& layer, const std::vector<RegionKey>& layer_keys) {
           return Resolve(layer, layer_keys);
         });
   }
 
-  // Rank by rank: a region depends only on lower ranks, so once those are in
-  // `resolved` (ours generated, others' awaited) the rank's regions are
-  // independent and generate in parallel. Others' work of the same rank is
-  // awaited only after ours is done, so no thread waits on a thread that
-  // waits on it.
-  for (int rank = 0; rank < 4; ++rank) {
-    const std::vector<RegionKey> mine(to_generate[rank].begin(), to_generate[rank].end());
-    std::vector<RegionHandle> generated(mine.size());
-    auto generate = [&](size_t n) {
-      std::vector<const RegionPoints*> neighbours;
-      for (const RegionKey& dependency : LowerRankedNeighbours(mine[n])) {
-        neighbours.push_back(resolved.at(dependency).get());
-      }
-      const auto disks = exclusions.find(mine[n]);
-      auto region = std::make_shared<const RegionPoints>(GenerateRegion(
-          world, mine[n], neighbours,
-          disks == exclusions.end() ? std::span<const ExclusionDisk>{} : disks->second));
-      cache_.Publish(world, mine[n], region);
-      generated[n] = std::move(region);
-    };
-    if (pool_ && mine.size() > 1) {
-      std::latch done(static_cast<std::ptrdiff_t>(mine.size()));
-      for (size_t n = 0; n < mine.size(); ++n) {
-        boost::asio::post(*pool_, [&, n] {
-          generate(n);
-          done.count_down();
-        });
-      }
-      done.wait();
-    } else {
-      for (size_t n = 0; n < mine.size(); ++n) generate(n);
+  // The dependency graph: a region of ours waits for its lower-ranked
+  // neighbours that are not ready yet (ours or others').
+  std::vector<PlannedRegion> plan(lookups.size());
+  std::vector<size_t> others;  // indices in `plan` of others' regions, by rank
+  size_t ours = 0;
+  for (size_t n = 0; n < plan.size(); ++n) {
+    plan[n].key = lookups[n].first;
+    plan[n].pending = std::move(lookups[n].second);
+    if (plan[n].pending.valid()) {
+      others.push_back(n);
+      continue;
     }
-    for (size_t n = 0; n < mine.size(); ++n) resolved.emplace(mine[n], std::move(generated[n]));
-    for (auto& [key, future] : pending[rank]) resolved.emplace(key, future.get());
+    ++ours;
+    for (const RegionKey& dependency : LowerRankedNeighbours(plan[n].key)) {
+      if (const auto it = planned.find(dependency); it != planned.end()) {
+        plan[it->second].dependents.push_back(n);
+        plan[n].waiting_for.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
   }
+  std::stable_sort(others.begin(), others.end(), [&](size_t a, size_t b) {
+    return RegionRank(plan[a].key) < RegionRank(plan[b].key);
+  });
+
+  // A region of ours starts as soon as its last dependency is set: a region
+  // is a pure function of its lower-ranked neighbours, so the order changes
+  // no bit, and no thread idles at a rank's end while another still works.
+  // Pool tasks never block. Without a pool (or for one region), the calling
+  // thread runs the ready regions from a queue.
+  const bool on_pool = pool_ && ours > 1;
+  std::latch done(static_cast<std::ptrdiff_t>(ours));
+  std::vector<size_t> queue;
+  std::function<void(size_t)> generate;
+  auto start = [&](size_t n) {
+    if (on_pool) {
+      boost::asio::post(*pool_, [&generate, n] { generate(n); });
+    } else {
+      queue.push_back(n);
+    }
+  };
+  // Sets plan[n]'s region and starts the dependents that waited for it last.
+  auto set = [&](size_t n, RegionHandle region) {
+    plan[n].region = std::move(region);
+    for (const size_t dependent : plan[n].dependents) {
+      if (plan[dependent].waiting_for.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+        start(dependent);
+      }
+    }
+  };
+  generate = [&](size_t n) {
+    const RegionKey key = plan[n].key;
+    std::array<const RegionPoints*, 8> neighbours;  // in place: no allocation a region
+    size_t neighbour_count = 0;
+    for (const RegionKey& dependency : LowerRankedNeighbours(key)) {
+      const auto it = ready.find(dependency);
+      neighbours[neighbour_count++] =
+          it != ready.end() ? it->second.get() : plan[planned.at(dependency)].region.get();
+    }
+    const auto disks = exclusions.find(key);
+    std::unique_ptr<RegionScratch> scratch = scratch_.Take();
+    if (options_.observer != nullptr) options_.observer->Started(world, key);
+    auto region = std::make_shared<const RegionPoints>(
+        GenerateRegion(world, key, std::span(neighbours.data(), neighbour_count),
+                       disks == exclusions.end() ? std::span<const ExclusionDisk>{} : disks->second,
+                       scratch.get()));
+    if (options_.observer != nullptr) options_.observer->Finished(world, key);
+    scratch_.Return(std::move(scratch));
+    cache_.Publish(world, key, region);
+    set(n, std::move(region));
+    done.count_down();  // last: the caller may return once every region counted down
+  };
+  auto run_queue = [&] {
+    for (size_t next = 0; next < queue.size(); ++next) generate(queue[next]);
+    queue.clear();
+  };
+
+  // Others' regions are awaited in rank order, after ours that are ready:
+  // a caller waits on a region of rank r only once its own regions of ranks
+  // up to r can run without it, so no thread waits on a thread that waits on
+  // it.
+  std::vector<size_t> first;  // all found before any starts, which would count others down
+  for (size_t n = 0; n < plan.size(); ++n) {
+    if (!plan[n].pending.valid() && plan[n].waiting_for.load(std::memory_order_relaxed) == 0) {
+      first.push_back(n);
+    }
+  }
+  for (const size_t n : first) start(n);
+  run_queue();
+  for (const size_t n : others) {
+    set(n, plan[n].pending.get());
+    run_queue();
+  }
+  done.wait();
 
   std::vector<RegionHandle> result;
   result.reserve(wanted.size());
-  for (const RegionKey& key : wanted) result.push_back(resolved.at(key));
+  for (const RegionKey& key : wanted) {
+    const auto it = ready.find(key);
+    result.push_back(it != ready.end() ? it->second : plan[planned.at(key)].region);
+  }
   return result;
 }
 

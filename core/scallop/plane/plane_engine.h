@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "scallop/base/scratch_pool.h"
 #include "scallop/base/status.h"
 #include "scallop/geometry/rect.h"
 #include "scallop/plane/point_id.h"
@@ -25,6 +26,19 @@ class thread_pool;
 
 namespace scallop {
 
+struct RegionScratch;
+
+// Told on the generating thread when a region's generation starts and when it
+// has finished (before the region is published to the cache and to the
+// regions that wait for it): for tests and tracing. Several threads call it
+// at once, so an implementation must be thread-safe.
+class RegionGenerationObserver {
+ public:
+  virtual ~RegionGenerationObserver() = default;
+  virtual void Started(const World& world, RegionKey key) = 0;
+  virtual void Finished(const World& world, RegionKey key) = 0;
+};
+
 struct PlaneEngineOptions {
   // Cache budget in bytes (about 32 bytes per point for A3).
   int64_t cache_bytes = int64_t{512} << 20;
@@ -33,6 +47,8 @@ struct PlaneEngineOptions {
   // Largest query area, in units of d^2 (1e8 d^2 is about 85M points); a
   // server sets it to the largest of its methods' limits.
   double max_query_area = 1e8;
+  // Not owned; null, or outlives the engine. Two calls a generated region.
+  RegionGenerationObserver* observer = nullptr;
 };
 
 // Points of a query, in a deterministic order: regions by row (j), then
@@ -99,13 +115,17 @@ class PlaneEngine {
 
  private:
   // Generated regions for `wanted` (all of them, in `wanted`'s order),
-  // generating missing ones and their lower-ranked dependencies rank by rank.
+  // generating missing ones and their lower-ranked dependencies, each as soon
+  // as its own dependencies are generated.
   std::vector<RegionHandle> Resolve(const World& world, const std::vector<RegionKey>& wanted);
   static std::vector<RegionKey> RegionsOverlapping(const World& world, const Rect& rect);
 
   PlaneEngineOptions options_;
   RegionCache cache_;
   std::unique_ptr<boost::asio::thread_pool> pool_;
+  // A region run's working memory, reused by the next run on any thread:
+  // about 200 kB each for A3, outside the cache's budget.
+  ScratchPool<RegionScratch> scratch_;
 };
 
 // The sides of `rect` that cut into a region owning `owned` (bit 0: x0, 1: x1,

@@ -7,6 +7,7 @@
 
 #include "scallop/plane/neighbour_points.h"
 #include "scallop/plane/point_id.h"
+#include "scallop/plane/region_scratch.h"
 #include "scallop/random/rng.h"
 #include "scallop/sampling/boundary_sampler.h"
 #include "scallop/sampling/field_sampler.h"
@@ -39,8 +40,8 @@ double SeedReach(const World& world) {
   return 1.01 * (UsesDensity(world.algorithm()) ? world.density() * d : d);
 }
 
-std::vector<RegionKey> LowerRankedNeighbours(RegionKey key) {
-  std::vector<RegionKey> neighbours;
+NeighbourKeys LowerRankedNeighbours(RegionKey key) {
+  NeighbourKeys neighbours;
   const int rank = RegionRank(key);
   for (int64_t dj = -1; dj <= 1; ++dj) {
     for (int64_t di = -1; di <= 1; ++di) {
@@ -53,16 +54,20 @@ std::vector<RegionKey> LowerRankedNeighbours(RegionKey key) {
 
 namespace {
 
-// Stores the run's points after the adopted ones: those in the rectangle as
-// the region's own, the others as its spill, each in run order, with A3's
+// Stores the adopted points, then the run's points: those in the rectangle
+// as the region's own, the others as its spill, each in run order, with A3's
 // flags (own, then spill) when the run gave them. Exact capacities, as the
 // cache counts them.
-void StorePlaced(const std::vector<Vec2>& placed, const std::vector<bool>& placed_unprocessed,
-                 const Rect& rect, const Rect& clipped_near, RegionPoints& region) {
-  const size_t adopted = region.points.size();
+void StorePlaced(const std::vector<Vec2>& adopted_points, const std::vector<Vec2>& placed,
+                 const std::vector<bool>& placed_unprocessed, const Rect& rect,
+                 const Rect& clipped_near, RegionPoints& region) {
+  const size_t adopted = adopted_points.size();
   size_t inside = 0;
   for (const Vec2& p : placed) inside += ContainsBranchFree(rect, p);
+  region.points.reserve(adopted + inside);
+  region.points.assign(adopted_points.begin(), adopted_points.end());
   region.points.resize(adopted + inside);
+  region.adopted = static_cast<uint32_t>(adopted);
   region.spill.resize(placed.size() - inside);
   const bool has_flags = !placed_unprocessed.empty();
   if (has_flags) region.unprocessed.assign(placed.size(), false);
@@ -83,7 +88,7 @@ void StorePlaced(const std::vector<Vec2>& placed, const std::vector<bool>& place
 
 // The run of a constant world's region, by its algorithm.
 std::vector<Vec2> SampleConstant(const World& world, const SamplingProblem& problem, Rng& rng,
-                                 std::vector<bool>* unprocessed) {
+                                 std::vector<bool>* unprocessed, BoundaryScratch& scratch) {
   switch (world.algorithm()) {
     case WorldAlgorithm::kA1:
       // Exact dart throwing in the region at density 2 (CellDarts::Reach::kInStop); the
@@ -95,7 +100,7 @@ std::vector<Vec2> SampleConstant(const World& world, const SamplingProblem& prob
     case WorldAlgorithm::kA3:
       break;
   }
-  return SampleBoundary(problem, rng, unprocessed);
+  return SampleBoundary(problem, rng, unprocessed, &scratch);
 }
 
 }  // namespace
@@ -106,14 +111,17 @@ Rect SampledRect(const World& world, RegionKey key) {
 
 RegionPoints GenerateRegion(const World& world, RegionKey key,
                             std::span<const RegionPoints* const> lower_neighbours,
-                            std::span<const ExclusionDisk> exclusions) {
+                            std::span<const ExclusionDisk> exclusions, RegionScratch* scratch) {
+  RegionScratch own_scratch;
+  RegionScratch& work = scratch != nullptr ? *scratch : own_scratch;
   const RegionLayout layout(world);
   const double d = world.min_distance();
   const Rect rect = layout.RegionRect(key);
   const Rect sampled = Grown(rect, SamplingMargin(world));
   // The neighbours' points constrain and seed the run; their spill inside the
   // rectangle is adopted; their rectangles, covered already, stay closed.
-  NeighbourPoints gathered = GatherNeighbourPoints(world, key, lower_neighbours);
+  NeighbourPoints& gathered = work.gathered;
+  GatherNeighbourPoints(world, key, lower_neighbours, gathered);
 
   // Run until the rectangle is covered, no further: the points beyond it are
   // a natural growth front for the higher-ranked neighbours to continue. A
@@ -134,7 +142,8 @@ RegionPoints GenerateRegion(const World& world, RegionKey key,
   Rng rng(
       HashWords({world.fingerprint(), static_cast<uint64_t>(key.i), static_cast<uint64_t>(key.j)}));
   std::vector<Vec2> placed;
-  std::vector<bool> placed_unprocessed;
+  std::vector<bool>& placed_unprocessed = work.placed_unprocessed;
+  placed_unprocessed.clear();  // A1 and A2 give no flags
   // A point whose curve (circle) crossed the sampled rectangle's edge had that
   // part clipped, not covered: it may still seed a later region.
   double clipped_reach = 1.01 * d;
@@ -142,19 +151,18 @@ RegionPoints GenerateRegion(const World& world, RegionKey key,
     placed = SampleFieldProblem(problem, *field, rng, &placed_unprocessed);
     clipped_reach = SeedReach(world);
   } else {
-    placed = SampleConstant(world, problem, rng, &placed_unprocessed);
+    placed = SampleConstant(world, problem, rng, &placed_unprocessed, work.boundary);
   }
   // Every placed point is a world point: outside the rectangle it lies in a
   // higher-ranked neighbour (the covered rectangles are closed to it), which
   // adopts it.
-  RegionPoints region{key, std::move(gathered.adopted), 0, {}, {}};
-  region.adopted = static_cast<uint32_t>(region.points.size());
-  StorePlaced(placed, placed_unprocessed, rect, Grown(sampled, -clipped_reach), region);
+  RegionPoints region{key, {}, 0, {}, {}};
+  StorePlaced(gathered.adopted, placed, placed_unprocessed, rect, Grown(sampled, -clipped_reach),
+              region);
   // The packing bound (296 points in a 16 d square; region_layout.h for
   // fields) keeps k in its id bits; a violation would be a sampler bug, not
   // bad input.
   assert(region.points.size() < (size_t{1} << layout.point_id_index_bits()));
-  region.points.shrink_to_fit();  // a no-op unless the adopted points came with spare room
   return region;
 }
 

@@ -2,6 +2,7 @@
 // the points of its lower-ranked neighbours). See docs/design.md, "Regions".
 #pragma once
 
+#include <array>
 #include <memory>
 #include <span>
 #include <vector>
@@ -66,9 +67,29 @@ struct RegionPoints {
   }
 };
 
-// The lower-ranked 8-neighbours of `key`, in the canonical order the
-// generator expects them: rows bottom to top, left to right within a row.
-std::vector<RegionKey> LowerRankedNeighbours(RegionKey key);
+struct RegionScratch;
+
+// Up to 8 region keys, held in place: the engine asks for a region's
+// neighbours several times a region, and a vector's allocation each time
+// showed in its profile.
+class NeighbourKeys {
+ public:
+  void push_back(RegionKey key) { keys_[count_++] = key; }  // REQUIRES: size() < 8
+  const RegionKey* begin() const { return keys_.data(); }
+  const RegionKey* end() const { return keys_.data() + count_; }
+  size_t size() const { return count_; }
+  bool empty() const { return count_ == 0; }
+  const RegionKey& operator[](size_t n) const { return keys_[n]; }
+
+ private:
+  std::array<RegionKey, 8> keys_{};
+  size_t count_ = 0;
+};
+
+// The lower-ranked 8-neighbours of `key` (all 8 for a rank-3 region, none for
+// rank 0), in the canonical order the generator expects them: rows bottom to
+// top, left to right within a row.
+NeighbourKeys LowerRankedNeighbours(RegionKey key);
 
 // Generates region `key`. `lower_neighbours[n]` must be the generated region
 // LowerRankedNeighbours(key)[n]. The sampler runs on the rectangle grown by
@@ -87,9 +108,12 @@ std::vector<RegionKey> LowerRankedNeighbours(RegionKey key);
 // within D of the sampled rectangle, with D as its radius (RegionExclusions).
 // A3 (a constant layer) cuts them from its circles and processes their own
 // circles too; the field sampler (a field layer) treats them as masked.
+// With `scratch` (region_scratch.h), the run works in its memory and leaves
+// it there for the caller's next run; the region is the same with it or without.
 RegionPoints GenerateRegion(const World& world, RegionKey key,
                             std::span<const RegionPoints* const> lower_neighbours,
-                            std::span<const ExclusionDisk> exclusions = {});
+                            std::span<const ExclusionDisk> exclusions = {},
+                            RegionScratch* scratch = nullptr);
 
 // The rectangle a region of `world` samples: its own grown by SamplingMargin.
 Rect SampledRect(const World& world, RegionKey key);

@@ -59,8 +59,15 @@ struct HugePageAllocator {
 class BoundaryGrid {
  public:
   // Covers `area` grown by `margin` on every side. REQUIRES: min_distance > 0.
-  BoundaryGrid(const Rect& area, double min_distance, double margin)
-      : origin_{area.x0 - margin, area.y0 - margin} {
+  BoundaryGrid(const Rect& area, double min_distance, double margin) {
+    Reset(area, min_distance, margin);
+  }
+
+  // Makes this grid what BoundaryGrid(area, min_distance, margin) would be,
+  // empty, keeping its memory where that suffices: a plane region's run
+  // reuses the grid of the run before it (BoundaryScratch). O(cells / 8).
+  void Reset(const Rect& area, double min_distance, double margin) {
+    origin_ = {area.x0 - margin, area.y0 - margin};
     const double width = area.Width() + 2 * margin, height = area.Height() + 2 * margin;
     // A diagonal a millionth short of min_distance, so that no two stored
     // points share a cell even though cells are found by a product, which
@@ -74,11 +81,14 @@ class BoundaryGrid {
     // Left uninitialised: only occupied cells are read. Filling them (about
     // 50 kB for a plane region) was 3% of a cold tile's time.
     const auto cells = static_cast<size_t>(tile_columns_ * tile_rows * kTile * kTile);
-    positions_ = {HugePageAllocator<Vec2>().allocate(cells), PositionsDeleter{cells}};
+    if (!positions_ || positions_.get_deleter().cells < cells) {
+      positions_.reset();
+      positions_ = {HugePageAllocator<Vec2>().allocate(cells), PositionsDeleter{cells}};
+    }
     // 8 spare bytes a row: OccupancyFrom reads 8 bytes from any column's
     // byte; kTile - 1 spare rows: GatherNear reads 8 rows from any row.
     occupancy_stride_ = (columns_ + 7) / 8 + 8;
-    occupancy_.resize(static_cast<size_t>((rows_ + kTile - 1) * occupancy_stride_));
+    occupancy_.assign(static_cast<size_t>((rows_ + kTile - 1) * occupancy_stride_), 0);
     // For a block whose first row (column) is at `first` in its tile: where
     // its k-th row (column) starts, in cells from the block's first cell.
     const auto tile_row_cells = static_cast<size_t>(tile_columns_ * kTile * kTile);
@@ -228,7 +238,7 @@ class BoundaryGrid {
   int64_t columns_, rows_, tile_columns_;
   // Tiled cells; a cell's position is set (and read) only where occupancy_ says so.
   std::unique_ptr<Vec2[], PositionsDeleter> positions_;
-  size_t row_offsets_[kTile][kTile], column_offsets_[kTile][kTile];  // see the constructor
+  size_t row_offsets_[kTile][kTile], column_offsets_[kTile][kTile];  // see Reset
   int64_t occupancy_stride_;                                         // bytes a row
   std::vector<uint8_t> occupancy_;  // a bit per cell, row-major: which cells hold a point
 };

@@ -14,6 +14,7 @@
 #include "scallop/sampling/boundary_arcs.h"
 #include "scallop/sampling/boundary_exclusions.h"
 #include "scallop/sampling/boundary_grid.h"
+#include "scallop/sampling/boundary_scratch.h"
 #include "scallop/sampling/candidate_boundary.h"
 #include "scallop/sampling/point_grid.h"
 #include "scallop/sampling/spacing.h"
@@ -145,11 +146,14 @@ void PlaceOnDiskCircle(const SamplingProblem& problem, double spacing,
 
 // SampleBoundary with `grid`, empty, covering the domain (a torus) or the
 // domain grown by 2 d + spacing (a rectangle): PointGrid, or on a rectangle
-// BoundaryGrid, which holds the same cells in less memory.
+// BoundaryGrid, which holds the same cells in less memory. Works in
+// `scratch`'s lists; with `keep_scratch`, returns a copy of the new points
+// and leaves the lists their memory, else returns the list itself.
 template <typename Grid>
 std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
                              BoundaryExclusions& exclusions, Grid& grid, Rng& rng,
-                             std::vector<bool>* unprocessed) {
+                             std::vector<bool>* unprocessed, BoundaryScratch& scratch,
+                             bool keep_scratch) {
   const Domain& domain = problem.domain;
   const double d = problem.min_distance;
   const double spacing_squared = spacing * spacing;
@@ -159,7 +163,7 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
   // 0.86 / d^2), up to 2^22: growing by doubling copied them over and over,
   // and touched twice the memory.
   const double expected = 0.9 * domain.rect.Width() * domain.rect.Height() / d_squared;
-  std::vector<Vec2> points;
+  std::vector<Vec2>& points = scratch.points;
   points.reserve(problem.inert_points.size() + problem.fixed_points.size() +
                  static_cast<size_t>(std::min(expected, 0x1p22)));
   points.assign(problem.inert_points.begin(), problem.inert_points.end());
@@ -168,11 +172,8 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
   const size_t fixed_count = points.size();
   // Each candidate's position with its index: the pool is small and stays in
   // cache, while `points` grows to N (a cache miss per pick at 1M).
-  struct Candidate {
-    Vec2 position;
-    int32_t index;
-  };
-  std::vector<Candidate> candidates;
+  std::vector<BoundaryCandidate>& candidates = scratch.candidates;
+  candidates.clear();
   // With a stop rectangle: how many candidates whose circle reaches it are
   // left. Once none is, every circle there is consumed, so the rectangle is
   // covered (F1 is continuous: an uncovered spot would put a spot at
@@ -201,15 +202,22 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
     if (!exclusions.AnyExcludes(seed)) add_point(seed);
   }
 
-  AvailableBoundary boundary;
+  AvailableBoundary& boundary = scratch.boundary;
   // Neighbours of the candidate, as images near it: nearby[0, nearby_count).
-  std::vector<Vec2> nearby;
+  std::vector<Vec2>& nearby = scratch.nearby;
   size_t nearby_count = 0;
-  std::vector<KeyArc> outside_arcs;  // of the candidate's circle, outside the rectangle
-  CandidateBoundary candidate_boundary(spacing);
+  // Of the candidate's circle, outside the rectangle.
+  std::vector<KeyArc>& outside_arcs = scratch.outside_arcs;
+  if (scratch.candidate_boundary) {
+    scratch.candidate_boundary->Reset(spacing);
+  } else {
+    scratch.candidate_boundary.emplace(spacing);
+  }
+  CandidateBoundary& candidate_boundary = *scratch.candidate_boundary;
   // The exclusion disks whose circle is still to be processed: those that reach the stop
   // rectangle (or the domain), each once, after the points' circles there (below).
-  std::vector<uint32_t> pockets;
+  std::vector<uint32_t>& pockets = scratch.pockets;
+  pockets.clear();
   const Rect& pocket_area = stop ? *stop : domain.rect;
   for (size_t k = 0; k < exclusions.size(); ++k) {
     const double r = exclusions.cut_radius(k);
@@ -287,14 +295,17 @@ std::vector<Vec2> SampleWith(const SamplingProblem& problem, double spacing,
       if (static_cast<size_t>(index) >= fixed_count) (*unprocessed)[index - fixed_count] = true;
     }
   }
+  if (keep_scratch) {
+    return {points.begin() + static_cast<std::ptrdiff_t>(fixed_count), points.end()};
+  }
   points.erase(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(fixed_count));
-  return points;
+  return std::move(points);
 }
 
 }  // namespace
 
 std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
-                                 std::vector<bool>* unprocessed) {
+                                 std::vector<bool>* unprocessed, BoundaryScratch* scratch) {
   const Domain& domain = problem.domain;
   const double d = problem.min_distance;
   const double reach = 2.0 * d;  // fixed points lie within 2 d of the domain
@@ -303,12 +314,20 @@ std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
   // Exclusion disks are a plane region's (rectangles only): a torus gets none.
   BoundaryExclusions exclusions(
       domain.torus ? std::span<const ExclusionDisk>{} : problem.exclusions, d, spacing, max_abs);
+  BoundaryScratch own_scratch;
+  const bool keep_scratch = scratch != nullptr;
+  if (!keep_scratch) scratch = &own_scratch;
   if (domain.torus) {
     PointGrid grid(domain.rect, true, d);
-    return SampleWith(problem, spacing, exclusions, grid, rng, unprocessed);
+    return SampleWith(problem, spacing, exclusions, grid, rng, unprocessed, *scratch, keep_scratch);
   }
-  BoundaryGrid grid(domain.rect, d, reach + spacing);
-  return SampleWith(problem, spacing, exclusions, grid, rng, unprocessed);
+  if (scratch->grid) {
+    scratch->grid->Reset(domain.rect, d, reach + spacing);
+  } else {
+    scratch->grid.emplace(domain.rect, d, reach + spacing);
+  }
+  return SampleWith(problem, spacing, exclusions, *scratch->grid, rng, unprocessed, *scratch,
+                    keep_scratch);
 }
 
 }  // namespace scallop

@@ -10,6 +10,8 @@
 
 namespace scallop {
 
+struct BoundaryScratch;
+
 // Samples the domain until every point's available boundary is empty; the
 // result is maximal for SpacingFor(d, ...) and every pair is at least d apart
 // in double precision. Points come back in generation order (fixed points
@@ -19,7 +21,10 @@ namespace scallop {
 // (unprocessed[k] for point k): only those can have any boundary left when a
 // stop rectangle ended the run early, so a later run that takes the points as
 // fixed may pass the others as inert.
+// With `scratch` (boundary_scratch.h), works in its memory and leaves it
+// there for the caller's next run; the points are the same with it or without.
 std::vector<Vec2> SampleBoundary(const SamplingProblem& problem, Rng& rng,
-                                 std::vector<bool>* unprocessed = nullptr);
+                                 std::vector<bool>* unprocessed = nullptr,
+                                 BoundaryScratch* scratch = nullptr);
 
 }  // namespace scallop

@@ -22,6 +22,13 @@ class CandidateBoundary {
   explicit CandidateBoundary(double spacing)
       : spacing_squared_(spacing * spacing), bins_(spacing) {}
 
+  // Makes this what CandidateBoundary(spacing) would be, keeping its scratch
+  // (for a caller that runs A3 again and again: BoundaryScratch).
+  void Reset(double spacing) {
+    spacing_squared_ = spacing * spacing;
+    bins_ = NeighbourBins(spacing);
+  }
+
   // Sets `boundary` to the circle of radius s about `centre` less
   // `other_arcs` (keys) and the arcs that the disks of radius s about
   // `neighbours` cover (as CoveredArcs computes them): the very ranges that
