@@ -6,12 +6,13 @@
 #include <cstdint>
 #include <cstring>
 
+#include "scallop/geometry/double_lanes.h"
 #include "scallop/geometry/vec2.h"
 
 namespace scallop {
 
-using Pair = double __attribute__((vector_size(16)));
-using PairBits = int64_t __attribute__((vector_size(16)));  // a comparison's lanes
+using Pair = Doubles;
+using PairBits = DoubleBits;                                // a comparison's lanes
 using PairCells = int32_t __attribute__((vector_size(8)));  // truncated to int
 static_assert(sizeof(Pair) == sizeof(Vec2));
 

@@ -278,17 +278,6 @@ SCALLOP_INLINE unsigned FloatLanesSet(Floats4Bits mask) {
 #endif
 }
 
-// Both square roots in one instruction, correctly rounded as std::sqrt's
-// are; and without std::sqrt's test for a negative argument (errno), which
-// GCC 12 kept for a sum of squares.
-SCALLOP_INLINE Pair SquareRoots(Pair squares) {
-#if defined(__SSE2__)
-  return __builtin_ia32_sqrtpd(squares);
-#else
-  return Pair{std::sqrt(squares[0]), std::sqrt(squares[1])};
-#endif
-}
-
 bool CpuHasAvx2() {
 #if defined(__x86_64__) || defined(__i386__)
   return __builtin_cpu_supports("avx2");
@@ -618,7 +607,10 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosit
     BlockQuery queries[4];
     for (int q = 0; q < 4; ++q) queries[q] = {.p = &positions[k + q].position, .best = &best[q]};
     Floats4 g[2] = {};
-    const bool located = LocatePair(queries, g[0]) & LocatePair(queries + 2, g[1]);
+    // Both pairs located whatever the first's verdict (each fills its queries).
+    const bool first_located = LocatePair(queries, g[0]);
+    const bool second_located = LocatePair(queries + 2, g[1]);
+    const bool located = first_located && second_located;
     const unsigned certified =
         paired_ && located ? FindPairsQuickly<2 * kLanes, 2>(queries, g) : kAnswerEachAlone;
     if (certified == kAnswerEachAlone) [[unlikely]] {

@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "scallop/geometry/double_lanes.h"
 #include "scallop/geometry/vec2.h"
 #include "scallop/random/rng.h"
 
@@ -45,12 +46,6 @@ inline Vec2 DirectionAtKey(double key) {
   const int odd = quadrant & 1;  // odd quadrants swap the parts
   return {kSignOfX[quadrant] * parts[odd], kSignOfY[quadrant] * parts[odd ^ 1]};
 }
-
-// Two lanes of doubles, or of their bits, in one SSE2 register (a GCC and
-// Clang vector extension): each lane sees the IEEE operations it would see
-// in scalar code, in the same order, so it gets the same bits.
-using Doubles = double __attribute__((vector_size(16)));
-using DoubleBits = int64_t __attribute__((vector_size(16)));
 
 // PseudoAngle of the two directions (x[i], y[i]), without branches: A3 takes
 // the pseudo-angles of both ends of every neighbour's arc, whose quadrants a

@@ -6,25 +6,11 @@
 
 #include <cmath>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
+#include "scallop/geometry/double_lanes.h"
 #include "scallop/geometry/vec2.h"
 #include "scallop/sampling/available_boundary.h"
 
 namespace scallop {
-
-// {sqrt(t[0]), sqrt(t[1])}: one packed square root where SSE2 has it (the
-// same correctly rounded bits), where std::sqrt gave two, each behind a
-// branch that keeps errno for negative inputs (t >= 0 here).
-inline Doubles SquareRoots(Doubles t) {
-#if defined(__SSE2__)
-  return _mm_sqrt_pd(t);
-#else
-  return Doubles{std::sqrt(t[0]), std::sqrt(t[1])};
-#endif
-}
 
 // The arcs that the neighbours at offset0 and offset1 from the candidate
 // cover, into arcs[0] and arcs[1]. Each is centred on the direction
