@@ -78,8 +78,8 @@ int CountBatchMismatches(const NearestSearchGrid& grid, const PointSet& set,
   NearestPoint untouched;
   untouched.id = 0x5eed, untouched.f1 = -1;
   std::vector<NearestPoint> results(count, untouched);
-  std::vector<uint32_t> refused = {99};  // appended to, not replaced
-  grid.AnswerEach(entries, results, refused);
+  std::vector<uint32_t> refused = {99};               // appended to, not replaced
+  grid.AnswerEach(entries, results, refused, &grid);  // its own lines as the next grid's: a hint
   if (fault == BatchFault::kUnreportedRefusal && refused.size() > 1) refused.pop_back();
   if (fault == BatchFault::kLastBit) results[0].f2 = std::nextafter(results[0].f2, 10.0);
   int mismatches = 0;

@@ -70,6 +70,10 @@ size_t CallSlotOf(RegionKey key, size_t slot_count) {
       (slot_count - 1));
 }
 
+// How far ahead of its write a grouped entry's line is prefetched, in
+// entries: 4 entries (96 bytes) reach past the line being written.
+constexpr uint32_t kScatterAhead = 4;
+
 // Brute-force answers between polls of the caller's stop: each is an engine
 // query, so a stop waits for at most this many of them.
 constexpr size_t kAnswersPerStopPoll = 64;
@@ -182,14 +186,23 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
     // (Plain pointers: through the vectors GCC reloaded them on every entry.)
     const uint32_t* grid_of = scratch->grid_of.data();
     for (size_t g = 0; g < grids.size(); ++g) starts[g + 1] += starts[g];
-    if (scratch->sorted.size() < positions.size()) scratch->sorted.resize(positions.size());
+    // The entries go to as many places at once as there are grids (256 in
+    // a 256 d square), more streams than the hardware prefetcher follows,
+    // so each write asks for the line its grid's entries reach next: that
+    // grid's next entry comes a few hundred positions later, by when the
+    // line is in the cache (docs/noise.md, "Speed").
+    if (scratch->sorted.size() < positions.size() + kScatterAhead) {
+      scratch->sorted.resize(positions.size() + kScatterAhead);
+    }
     IndexedPosition* sorted = scratch->sorted.data();
     std::vector<uint32_t> next_vector(starts.begin(), starts.end() - 1);
     uint32_t* next = next_vector.data();
     for (size_t k = 0; k < positions.size(); ++k) {
+      const uint32_t slot = next[grid_of[k]]++;
+      __builtin_prefetch(sorted + slot + kScatterAhead, 1);
       // Field by field: as one aggregate GCC 12 passed it through the stack,
       // and reloading the index from there cost more than the rest of the loop.
-      IndexedPosition& entry = sorted[next[grid_of[k]]++];
+      IndexedPosition& entry = sorted[slot];
       entry.position = positions[k];
       entry.index = static_cast<uint32_t>(k);
     }
@@ -206,7 +219,10 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
     auto answer_from = [&](size_t g) -> Status {
       if (const NearestSearchGrid* grid = grids[g].constant.get()) {
         refused.clear();
-        grid->AnswerEach({sorted + starts[g], sorted + starts[g + 1]}, results, refused);
+        // The next group's grid is prefetched meanwhile (a hint).
+        const NearestSearchGrid* next =
+            g + 1 < grids.size() ? grids[g + 1].constant.get() : nullptr;
+        grid->AnswerEach({sorted + starts[g], sorted + starts[g + 1]}, results, refused, next);
         for (const uint32_t offset : refused) {
           if (Status status = fall_back(starts[g] + offset); !status.ok()) return status;
         }
@@ -226,7 +242,8 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
       if (StopNow(stop)) return StopStatus();
       if (Status status = answer_from(g); !status.ok()) return status;
     }
-    if (scratch->sorted.capacity() <= kMaxScratchPositions) scratch_.Return(std::move(scratch));
+    if (scratch->sorted.capacity() <= kMaxScratchPositions + kScatterAhead)
+      scratch_.Return(std::move(scratch));
   }
   std::lock_guard lock(mutex_);
   stats_.lookups += static_cast<int64_t>(positions.size());

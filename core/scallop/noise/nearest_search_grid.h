@@ -124,9 +124,13 @@ class NearestSearchGrid {
   // in registers, a pair of positions shares one vector of float keys, and
   // two pairs run side by side, two independent chains of loads and
   // compares (docs/noise.md, "The paired pass", "Answering a batch").
+  // `next`, if not null, is the grid the caller answers from next: its
+  // lines are prefetched into L2 a few at a time meanwhile, since a batch's
+  // grids (16 KB each, a few hundred) do not stay in L2 from one batch to
+  // the next. A hint: the answers do not depend on it.
   // REQUIRES: every entry's index < results.size().
   void AnswerEach(std::span<const IndexedPosition> positions, std::span<NearestPoint> results,
-                  std::vector<uint32_t>& refused) const;
+                  std::vector<uint32_t>& refused, const NearestSearchGrid* next = nullptr) const;
 
   RegionKey key() const { return key_; }
   size_t PointCount() const { return cell_start_.back(); }
@@ -191,11 +195,13 @@ class NearestSearchGrid {
   // AnswerEach with kLanes lanes, inlined into the two entry points below.
   template <int kLanes>
   void AnswerEachIn(std::span<const IndexedPosition> positions, NearestPoint* results,
-                    std::vector<uint32_t>& refused) const;
+                    std::vector<uint32_t>& refused, const NearestSearchGrid* next) const;
   void AnswerEachInTwoLanes(std::span<const IndexedPosition> positions, NearestPoint* results,
-                            std::vector<uint32_t>& refused) const;
+                            std::vector<uint32_t>& refused, const NearestSearchGrid* next) const;
   void AnswerEachInFourLanes(std::span<const IndexedPosition> positions, NearestPoint* results,
-                             std::vector<uint32_t>& refused) const;
+                             std::vector<uint32_t>& refused, const NearestSearchGrid* next) const;
+  // Walks another grid's arrays, prefetching a few lines a step (.cc).
+  class LinePrefetcher;
   // AnswerEach's rare cases: entry `offset` by FindTwoNearest, or by the
   // exact phases alone once its quick pass has failed.
   void AnswerAlone(const IndexedPosition& entry, uint32_t offset, NearestPoint* results,
