@@ -42,11 +42,13 @@ double WallSeconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// User and system CPU time of the whole process (every engine thread), and
-// its minor page faults so far.
+// User and system CPU time of the whole process (every engine thread), its
+// minor page faults and its threads' voluntary context switches (a thread
+// sleeping until work or a region it needs is ready) so far.
 struct ProcessUsage {
   double seconds = 0;
   double faults = 0;
+  double sleeps = 0;
 };
 ProcessUsage ProcessUsageNow() {
   rusage usage{};
@@ -54,7 +56,8 @@ ProcessUsage ProcessUsageNow() {
   auto seconds = [](const timeval& t) {
     return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
   };
-  return {seconds(usage.ru_utime) + seconds(usage.ru_stime), static_cast<double>(usage.ru_minflt)};
+  return {seconds(usage.ru_utime) + seconds(usage.ru_stime), static_cast<double>(usage.ru_minflt),
+          static_cast<double>(usage.ru_nvcsw)};
 }
 
 // The q-th quantile of `values`, sorted.
@@ -82,7 +85,8 @@ int RunWithCache(int tiles, double side, int threads, double cache_mib) {
   for (const int64_t filled = k; k < 2 * filled;) {
     if (!query().ok()) return 1;
   }
-  std::vector<double> wall_ms, cpu_ms, faults;
+  std::vector<double> wall_ms;
+  ProcessUsage total;
   double points = 0;
   const int64_t misses_before = engine.CacheStats().misses;
   for (int n = 0; n < tiles; ++n) {
@@ -91,8 +95,9 @@ int RunWithCache(int tiles, double side, int threads, double cache_mib) {
     auto result = query();
     wall_ms.push_back(1e3 * (WallSeconds() - start));
     const ProcessUsage after = ProcessUsageNow();
-    cpu_ms.push_back(1e3 * (after.seconds - usage.seconds));
-    faults.push_back(after.faults - usage.faults);
+    total.seconds += after.seconds - usage.seconds;
+    total.faults += after.faults - usage.faults;
+    total.sleeps += after.sleeps - usage.sleeps;
     if (!result.ok()) {
       std::fprintf(stderr, "%s\n", result.status().message().c_str());
       return 1;
@@ -100,20 +105,14 @@ int RunWithCache(int tiles, double side, int threads, double cache_mib) {
     points += static_cast<double>(result->positions.size());
   }
   const double generated = static_cast<double>(engine.CacheStats().misses - misses_before);
-  double cpu_total = 0;
-  double fault_total = 0;
-  for (int n = 0; n < tiles; ++n) {
-    cpu_total += cpu_ms[n];
-    fault_total += faults[n];
-  }
   std::sort(wall_ms.begin(), wall_ms.end());
   std::printf(
       "%d cold %g d tiles, %.0f points each, wall time on %d engine threads with a full %g MiB "
       "cache (%.1f regions generated a tile, %.0f tiles of warm-up): median %.2f ms, p90 %.2f ms, "
-      "p99 %.2f ms; CPU %.0f us a tile, %.1f page faults a tile\n",
+      "p99 %.2f ms; CPU %.0f us, %.1f page faults and %.1f thread sleeps a tile\n",
       tiles, side, points / tiles, threads, cache_mib, generated / tiles,
       static_cast<double>(k - tiles), At(wall_ms, 0.5), At(wall_ms, 0.9), At(wall_ms, 0.99),
-      1e3 * cpu_total / tiles, fault_total / tiles);
+      1e6 * total.seconds / tiles, total.faults / tiles, total.sleeps / tiles);
   return 0;
 }
 
