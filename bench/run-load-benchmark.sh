@@ -16,7 +16,9 @@
 # runs beside the first in every round, so a change is measured against what
 # it replaced under the same background load. With the build's
 # cold_tile_latency, the engine alone on as many threads is measured too
-# before the cold runs: what of a cold call's latency is the engine's own.
+# before the cold runs: what of a cold call's latency is the engine's own,
+# on the same work (one engine with a full cache of the same budget, the
+# load generator's cold tiles; its cache mode).
 #
 #   bench/run-load-benchmark.sh build-load
 #   CACHE_MB=64 DURATION=10 STREAMS="1 4" REPEATS=3 bench/run-load-benchmark.sh build-load
@@ -38,7 +40,7 @@ warm_side=${WARM_SIDE:-256}    # the warm square's side in d
 repeats=${REPEATS:-1}          # null / warm rounds per stream count
 glibc_defaults=${GLIBC_DEFAULTS:-0}
 before=${BEFORE:-}             # another scallopd binary, run beside this one
-engine_tiles=${ENGINE_TILES:-200}  # cold tiles of the engine-alone baseline
+engine_tiles=${ENGINE_TILES:-1000}  # cold tiles of the engine-alone baseline
 # A malloc tunable at its default value: scallopd then leaves malloc alone.
 tunables=glibc.malloc.perturb=0
 
@@ -188,7 +190,7 @@ for round in $(seq "$repeats"); do
 done
 engine_cold=
 if [[ -x $build/bench/cold_tile_latency ]]; then
-  engine_cold=$("$build/bench/cold_tile_latency" "$engine_tiles" "$tile" "$threads")
+  engine_cold=$("$build/bench/cold_tile_latency" "$engine_tiles" "$tile" "$threads" "$cache_mb")
 fi
 for streams in $streams_list; do
   for server in "${servers[@]}"; do run "$server" cold "$streams"; done
@@ -234,7 +236,7 @@ awk -F'\t' '
       cold_p99[server], (cold_p99[server] <= 5 ? "met" : "not met")
   }' "$rows" | sort
 if [[ -n $engine_cold ]]; then
-  echo "engine alone (cold_tile_latency $engine_tiles $tile $threads): $engine_cold"
+  echo "engine alone (cold_tile_latency $engine_tiles $tile $threads $cache_mb): $engine_cold"
 fi
 for server in "${servers[@]}"; do
   hwm=$(awk '/^VmHWM:/ {print $2}' "/proc/${pid[$server]}/status")

@@ -134,7 +134,7 @@ if ((quick)); then
   FOLLOW_BENCH_WALK_D=64 bench follow_bench
   bench wire_bench --benchmark_min_time=0.01
   bench warm_answer_bench --benchmark_min_time=0.01
-  load_env=(DURATION=1 REQUESTS=50 STREAMS=1 REPEATS=1 ENGINE_TILES=10)
+  load_env=(DURATION=1 REQUESTS=50 STREAMS=1 REPEATS=1 ENGINE_TILES=10 CACHE_MB=8)
   http_tiles_args=(0 2 1 1 1)
   nginx_tiles_args=(0 2 1 1)
   soak_seconds=8 soak_interval=1

@@ -461,7 +461,8 @@ def service_load(run):
         "(issue 23): warm at least 0.85x the null server in every round (each round's\n"
         "null and scallopd runs are seconds apart, so the ratio is given round by round\n"
         "and its worst); cold p99 for one stream at most 5 ms, beside the engine alone\n"
-        "on as many threads (`cold_tile_latency`, wall time) in the same run. With\n"
+        "on as many threads on the same work (`cold_tile_latency` with a full cache of\n"
+        "the same budget and the load generator's tiles, wall time) in the same run. With\n"
         "`BEFORE=` an earlier build's scallopd (`before`) runs beside it, taking turns\n"
         "going first. `cpu_us/req` is the server's CPU time a call, the figure a loaded\n"
         "machine disturbs least.\n",
