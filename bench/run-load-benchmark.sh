@@ -228,12 +228,15 @@ warm_round() {
 }
 
 # Null and warm in one round for each stream count, in turns, so the ratio
-# compares them under the same background load. Who goes first alternates
-# from round to round.
+# compares them under the same background load. The order turns by one
+# server a round: with three or more, the one in the middle of A B C C B A
+# is entered twice as often as the others (each time with caches the others
+# left), so each takes that place in turn.
 for round in $(seq "$repeats"); do
   for streams in $streams_list; do
     order=(null "${servers[@]}")
-    if ((round % 2 == 0)); then order=($(printf '%s\n' "${order[@]}" | tac)); fi
+    shift_by=$(((round - 1) % ${#order[@]}))
+    order=("${order[@]:shift_by}" "${order[@]:0:shift_by}")
     warm_round "$streams" "$round" "${order[@]}"
   done
 done
