@@ -16,6 +16,7 @@
 #include "bench/load_tile_plan.h"
 #include "bench/null_server_responses.h"
 #include "scallop/v1/scallop.grpc.pb.h"
+#include "server/lock_order_checks.h"
 
 namespace scallop::load {
 namespace {
@@ -92,6 +93,8 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  // As scallopd does, so that the two run the same transport.
+  scallop::server::TurnOffLockOrderChecks();
   scallop::load::NullScallopService service(scallop::load::BuildNullResponses(options),
                                             options.tile_side);
   // Signals are taken by sigwait below; gRPC's threads inherit the mask.

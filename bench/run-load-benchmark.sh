@@ -7,6 +7,11 @@
 # servers' resident memory throughout, and prints a table with the ratio
 # warm / null. All servers run side by side on this machine, in one run.
 #
+# A warm round is one load_generator run that drives every server in turns
+# of SLICE seconds (A B B A A B ..., DURATION seconds each in all), so the
+# machine's load drifts over all of them alike and each round's ratio is
+# measured under one load; REPEATS rounds for each stream count.
+#
 # scallopd fixes glibc's malloc thresholds itself (server/malloc_tuning.h).
 # With GLIBC_DEFAULTS=1 a second scallopd runs with glibc's own dynamic
 # thresholds (any malloc tunable in GLIBC_TUNABLES turns the fix off), to
@@ -21,23 +26,24 @@
 # load generator's cold tiles; its cache mode).
 #
 #   bench/run-load-benchmark.sh build-load
-#   CACHE_MB=64 DURATION=10 STREAMS="1 4" REPEATS=3 bench/run-load-benchmark.sh build-load
+#   CACHE_MB=64 DURATION=10 SLICE=1 STREAMS="1 4" REPEATS=3 bench/run-load-benchmark.sh build-load
 set -euo pipefail
 
 if [[ $# -ne 1 ]]; then
-  echo "usage: $0 BUILD_DIR  (env: CACHE_MB DURATION REQUESTS STREAMS THREADS TILE WARM_SIDE" \
-    "REPEATS GLIBC_DEFAULTS BEFORE ENGINE_TILES)" >&2
+  echo "usage: $0 BUILD_DIR  (env: CACHE_MB DURATION SLICE REQUESTS STREAMS THREADS TILE" \
+    "WARM_SIDE REPEATS GLIBC_DEFAULTS BEFORE ENGINE_TILES)" >&2
   exit 2
 fi
 build=$1
 cache_mb=${CACHE_MB:-64}       # scallopd --cache-megabytes
 duration=${DURATION:-10}       # seconds per run (each run also stops at REQUESTS)
+slice=${SLICE:-1}              # seconds of a server's turn in a warm round
 requests=${REQUESTS:-1000000}
 streams_list=${STREAMS:-"1 4"}
 threads=${THREADS:-2}          # scallopd --threads
 tile=${TILE:-64}               # tile side in d
 warm_side=${WARM_SIDE:-256}    # the warm square's side in d
-repeats=${REPEATS:-1}          # null / warm rounds per stream count
+repeats=${REPEATS:-1}          # warm rounds per stream count
 glibc_defaults=${GLIBC_DEFAULTS:-0}
 before=${BEFORE:-}             # another scallopd binary, run beside this one
 engine_tiles=${ENGINE_TILES:-1000}  # cold tiles of the engine-alone baseline
@@ -139,7 +145,8 @@ start_server null "null_server listening on" "$null_server" --listen 127.0.0.1:0
 echo "# scallopd ${address[scallopd]} (--threads $threads --cache-megabytes $cache_mb)," \
   "glibc defaults ${address[glibc]:-off} (GLIBC_TUNABLES=$tunables), null server ${address[null]}"
 [[ -n $before ]] && echo "# before: $before at ${address[before]}"
-echo "# each run: at most $duration s and $requests requests; tile $tile d; warm square $warm_side d"
+echo "# each run: at most $duration s and $requests requests; tile $tile d; warm square $warm_side d;" \
+  "warm rounds in turns of $slice s"
 
 rows=$work/rows.tsv
 : >"$rows"
@@ -177,15 +184,62 @@ run() {
     "$round" >>"$rows"
 }
 
-# Null and warm side by side for each stream count, so the ratio compares
-# runs seconds apart under the same background load.
+# warm_round STREAMS ROUND NAME...: one load_generator run that drives the
+# servers NAME... (null and every scallopd) in turns of $slice s (in that order, then reversed: A B B A
+# ...), $duration s each; a row in $rows for each, as run's, with its peak
+# resident memory, cache counters and CPU time over the whole round (a
+# server is idle during the others' turns).
+warm_round() {
+  local streams=$1 round=$2
+  shift 2
+  local names=("$@") targets=() name
+  declare -A sampler hits_before misses_before cpu_before
+  for name in "${names[@]}"; do
+    targets+=(--target "${address[$name]}")
+    : >"$work/rss-$name-warm-$streams"
+    sample_rss "${pid[$name]}" "$work/rss-$name-warm-$streams" &
+    sampler[$name]=$!
+    hits_before[$name]=$(cache_counter "$name" scallop_cache_hits_total)
+    misses_before[$name]=$(cache_counter "$name" scallop_cache_misses_total)
+    cpu_before[$name]=$(cpu_ticks "${pid[$name]}")
+  done
+  local out
+  out=$("$generator" "${targets[@]}" --slice "$slice" --mode warm --streams "$streams" \
+    --duration "$duration" --requests "$requests" --tile "$tile" --warm-side "$warm_side" \
+    --output tsv) || echo "# warm round $round, $streams streams: errors (see the rows)" >&2
+  local rows_out=() n
+  mapfile -t rows_out <<<"$out"
+  declare -A row
+  for n in "${!names[@]}"; do row[${names[$n]}]=${rows_out[$n]:-}; done
+  # The rows in the table's order (null, then the scallopds), whoever went first.
+  for name in null "${servers[@]}"; do
+    kill "${sampler[$name]}" 2>/dev/null || true
+    wait "${sampler[$name]}" 2>/dev/null || true
+    if ! kill -0 "${pid[$name]}" 2>/dev/null; then
+      echo "$name exited during warm round $round with $streams streams; its log ends:" >&2
+      tail -5 "$work/$name.err" >&2
+      exit 1
+    fi
+    local cpu=$(($(cpu_ticks "${pid[$name]}") - cpu_before[$name]))
+    local hits=$(($(cache_counter "$name" scallop_cache_hits_total) - hits_before[$name]))
+    local misses=$(($(cache_counter "$name" scallop_cache_misses_total) - misses_before[$name]))
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "${row[$name]}" \
+      "$(mib "$(sort -n "$work/rss-$name-warm-$streams" | tail -1)")" "$hits" "$misses" \
+      "$(awk -v t="$cpu" -v hz="$ticks_per_second" 'BEGIN { print t / hz }')" "$round" >>"$rows"
+  done
+}
+
+# Null and warm in one round for each stream count, in turns, so the ratio
+# compares them under the same background load. The order turns by one
+# server a round: with three or more, the one in the middle of A B C C B A
+# is entered twice as often as the others (each time with caches the others
+# left), so each takes that place in turn.
 for round in $(seq "$repeats"); do
   for streams in $streams_list; do
-    run null warm "$streams" "$round"
-    # The scallopds take turns going first, so neither always follows the null server.
-    order=("${servers[@]}")
-    if ((round % 2 == 0)); then order=($(printf '%s\n' "${servers[@]}" | tac)); fi
-    for server in "${order[@]}"; do run "$server" warm "$streams" "$round"; done
+    order=(null "${servers[@]}")
+    shift_by=$(((round - 1) % ${#order[@]}))
+    order=("${order[@]:shift_by}" "${order[@]:0:shift_by}")
+    warm_round "$streams" "$round" "${order[@]}"
   done
 done
 engine_cold=
@@ -211,8 +265,8 @@ awk -F'\t' '{
 
 echo
 # The issue's targets: warm at least 0.85x the null server in every round
-# (each round's null and scallopd runs are seconds apart), and a cold p99 for
-# one stream of at most 5 ms.
+# (each round's null and scallopd turns alternate, under one load), and a
+# cold p99 for one stream of at most 5 ms.
 awk -F'\t' '
   $2 == "warm" { rate[$1, $3] += $7; round_rate[$1, $3, $18] = $7; seen[$3] = 1; rounds[$18] = 1 }
   $2 == "cold" && $3 == 1 { cold_p99[$1] = $12 }

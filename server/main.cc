@@ -22,6 +22,7 @@
 #include "server/buffered_log_sink.h"
 #include "server/connection_limits.h"
 #include "server/http_api.h"
+#include "server/lock_order_checks.h"
 #include "server/malloc_tuning.h"
 #include "server/metrics_http_server.h"
 #include "server/page_token.h"
@@ -207,6 +208,7 @@ int main(int argc, char** argv) {
   boost::asio::io_context signals_context;
   boost::asio::signal_set signals(signals_context, SIGINT, SIGTERM);
   scallop::server::TuneMallocForResponses();
+  scallop::server::TurnOffLockOrderChecks();
   // Logs on stderr; stdout carries only the address line, for scripts and tests.
   // Call lines are written in batches (buffered_log_sink.h): within a second,
   // and warnings and errors at once.

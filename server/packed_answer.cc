@@ -5,6 +5,9 @@
 #include <array>
 #include <cstring>
 
+#include "scallop/geometry/double_lanes.h"
+#include "scallop/plane/plane_engine.h"
+
 namespace scallop::server {
 namespace {
 
@@ -15,6 +18,58 @@ constexpr char kResponseWorld = 0x1A;   // GetPointsResponse.world = 3
 constexpr char kPointsXs = 0x0A;        // Points.xs = 1
 constexpr char kPointsYs = 0x12;        // Points.ys = 2
 constexpr char kPointsIds = 0x1A;       // Points.ids = 3
+
+// Two points' x and y, swapped across two SSE2-wide vectors (plain code where
+// there is none).
+struct PointPair {
+  Doubles x;
+  Doubles y;
+};
+PointPair LoadPair(const Vec2* points) {
+  Doubles first, second;
+  std::memcpy(&first, &points[0], sizeof first);
+  std::memcpy(&second, &points[1], sizeof second);
+  return {__builtin_shufflevector(first, second, 0, 2),
+          __builtin_shufflevector(first, second, 1, 3)};
+}
+
+// AppendInside for the sides kSides of `rect` (CuttingSides' bits). Two points
+// at a time, each side one comparison of both, whose lanes are -1 (inside) or
+// 0; each point is then stored at `kept`, and `kept` moves past it by its
+// lane's truth, negated.
+template <int kSides>
+size_t AppendInsideOf(const Vec2* points, size_t count, uint64_t first_id, const Rect& rect,
+                      double* __restrict xs, double* __restrict ys, uint64_t* __restrict ids) {
+  const Doubles x0 = {rect.x0, rect.x0};
+  const Doubles x1 = {rect.x1, rect.x1};
+  const Doubles y0 = {rect.y0, rect.y0};
+  const Doubles y1 = {rect.y1, rect.y1};
+  size_t kept = 0;
+  size_t k = 0;
+  for (; k + 2 <= count; k += 2) {
+    const PointPair pair = LoadPair(points + k);
+    DoubleBits inside = {-1, -1};
+    if constexpr ((kSides & 1) != 0) inside &= x0 <= pair.x;
+    if constexpr ((kSides & 2) != 0) inside &= pair.x < x1;
+    if constexpr ((kSides & 4) != 0) inside &= y0 <= pair.y;
+    if constexpr ((kSides & 8) != 0) inside &= pair.y < y1;
+    xs[kept] = pair.x[0];
+    ys[kept] = pair.y[0];
+    ids[kept] = first_id + k;
+    kept -= static_cast<size_t>(inside[0]);
+    xs[kept] = pair.x[1];
+    ys[kept] = pair.y[1];
+    ids[kept] = first_id + k + 1;
+    kept -= static_cast<size_t>(inside[1]);
+  }
+  for (; k < count; ++k) {
+    xs[kept] = points[k].x;
+    ys[kept] = points[k].y;
+    ids[kept] = first_id + k;
+    kept += InsideOnSides<kSides>(rect, points[k]);
+  }
+  return kept;
+}
 
 size_t VarintSize(uint64_t value) {
   size_t size = 1;
@@ -40,22 +95,16 @@ PackedAnswerWriter::PackedAnswerWriter(size_t capacity)
 }
 
 void PackedAnswerWriter::AppendRun(const Vec2* points, size_t count, uint64_t first_id) {
-  // Two points at a time, their coordinates swapped across two SSE2-wide
-  // vectors (plain code where there is none): half the instructions of a
-  // point at a time, most of a warm tile being whole regions.
-  using Doubles = double __attribute__((vector_size(16)));
+  // Two points at a time (LoadPair): half the instructions of a point at a
+  // time, most of a warm tile being whole regions.
   double* __restrict xs = xs_ + count_;
   double* __restrict ys = ys_ + count_;
   uint64_t* __restrict ids = ids_ + count_;
   size_t k = 0;
   for (; k + 2 <= count; k += 2) {
-    Doubles first, second;
-    std::memcpy(&first, &points[k], sizeof first);
-    std::memcpy(&second, &points[k + 1], sizeof second);
-    const Doubles x = __builtin_shufflevector(first, second, 0, 2);
-    const Doubles y = __builtin_shufflevector(first, second, 1, 3);
-    std::memcpy(xs + k, &x, sizeof x);
-    std::memcpy(ys + k, &y, sizeof y);
+    const PointPair pair = LoadPair(points + k);
+    std::memcpy(xs + k, &pair.x, sizeof pair.x);
+    std::memcpy(ys + k, &pair.y, sizeof pair.y);
     ids[k] = first_id + k;
     ids[k + 1] = first_id + k + 1;
   }
@@ -65,6 +114,16 @@ void PackedAnswerWriter::AppendRun(const Vec2* points, size_t count, uint64_t fi
     ids[k] = first_id + k;
   }
   count_ += static_cast<uint32_t>(count);
+}
+
+size_t PackedAnswerWriter::AppendInside(const Vec2* points, size_t count, uint64_t first_id,
+                                        const Rect& rect, int sides) {
+  const size_t kept = WithCuttingSides(sides, [&](auto cutting) {
+    return AppendInsideOf<decltype(cutting)::value>(points, count, first_id, rect, xs_ + count_,
+                                                    ys_ + count_, ids_ + count_);
+  });
+  count_ += static_cast<uint32_t>(kept);
+  return kept;
 }
 
 grpc::ByteBuffer PackedAnswerWriter::Finish(std::string_view next_page_token,

@@ -14,6 +14,7 @@
 #include <string>
 #include <string_view>
 
+#include "scallop/geometry/rect.h"
 #include "scallop/geometry/vec2.h"
 
 namespace scallop::server {
@@ -38,6 +39,14 @@ class PackedAnswerWriter {
   // points[0, count) with ids first_id + k, as `count` Appends would.
   // REQUIRES: room for them.
   void AppendRun(const Vec2* points, size_t count, uint64_t first_id);
+  // Those of points[0, count) (ids first_id + k) that lie in `rect`, in
+  // order, as Appends would; returns how many. `sides` (CuttingSides of the
+  // region's rectangle) are the sides of `rect` that may leave a point out:
+  // only those are tested. One pass without a branch on the points: each is
+  // written where the next kept point goes, and the count moves past it only
+  // if it is inside. REQUIRES: room for all `count`.
+  size_t AppendInside(const Vec2* points, size_t count, uint64_t first_id, const Rect& rect,
+                      int sides);
   // The packed answer of a world without layers: nothing to record.
   void StartLayer(int /*layer*/) {}
   size_t count() const { return count_; }
@@ -59,8 +68,9 @@ class PackedAnswerWriter {
 };
 
 // What VisitPoints calls for an appender (WritePoints' or this writer): its
-// Append a point, and when it has one its AppendRun for the points of a
-// region wholly inside, in bulk.
+// Append a point, and when it has them its AppendRun for the points of a
+// region wholly inside and its AppendInside for those of a region the
+// rectangle cuts, in bulk.
 template <typename Appender>
 struct AppendTo {
   Appender& appender;
@@ -69,6 +79,11 @@ struct AppendTo {
     appender.AppendRun(points, count, first_id);
   }
   { appender.AppendRun(points, count, first_id); }
+  size_t operator()(const Vec2* points, size_t count, uint64_t first_id, const Rect& rect,
+                    int sides) const requires requires {
+    appender.AppendInside(points, count, first_id, rect, sides);
+  }
+  { return appender.AppendInside(points, count, first_id, rect, sides); }
 };
 
 }  // namespace scallop::server

@@ -2,7 +2,7 @@
 // protobuf's own serialization of the same message: the same bytes for any
 // number of points (each size of the arrays' varint lengths), edge doubles,
 // with and without a page token, whatever room the writer was given beyond
-// its points; and a planted fault (one bit of one point) the check catches.
+// its points, in bulk as one by one; and planted faults the checks catch.
 #include "server/packed_answer.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "scallop/plane/plane_engine.h"
 #include "scallop/random/rng.h"
 #include "world_messages.h"
 
@@ -124,6 +125,66 @@ TEST(PackedAnswerTest, RunsWriteWhatPointsOneByOneWrite) {
   for (uint64_t k = 0; k < 3; ++k) one_by_one.Append(points[k], 10 + k);
   in_runs.AppendRun(points, 3, 11);
   EXPECT_NE(Bytes(in_runs.Finish("", world)), Bytes(one_by_one.Finish("", world)));
+}
+
+// AppendInside (a cut region's points filtered in bulk) against the points
+// inside appended one by one: regions of every size up to 9 (odd and even,
+// for its two-at-a-time pass) and larger, cut on every set of sides (the
+// sides CuttingSides gives for the region's rectangle), with points on the
+// rectangle's edges (x0 and y0 kept, x1 and y1 not: half-open), at every
+// offset in the writer.
+TEST(PackedAnswerTest, CutRegionsWriteWhatTheirPointsInsideWrite) {
+  const std::string world = WorldToMessage(*World::Create({.seed = 7})).SerializeAsString();
+  int sides_seen = 0;
+  for (const uint64_t seed : {1, 2, 3, 4, 5, 6, 7, 8}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    Rng rng(seed);
+    PackedAnswerWriter one_by_one(20000);
+    PackedAnswerWriter in_bulk(20000);
+    uint64_t next_id = rng.NextBits() >> 1;
+    for (int region = 0; region < 200; ++region) {
+      // A region owning [0, 16)^2, cut by a rectangle whose sides fall inside it or beyond.
+      const Rect owned{0, 0, 16, 16};
+      auto edge = [&](double beyond) { return rng.Below(2) == 0 ? beyond : rng.Uniform(1, 15); };
+      Rect rect{edge(-5), edge(-5), edge(21), edge(21)};
+      if (rect.x1 <= rect.x0) std::swap(rect.x0, rect.x1);
+      if (rect.y1 <= rect.y0) std::swap(rect.y0, rect.y1);
+      const int sides = CuttingSides(rect, owned);
+      sides_seen |= 1 << sides;
+      const size_t count = rng.Below(4) == 0 ? 100 + rng.Below(300) : rng.Below(10);
+      std::vector<Vec2> points(count);
+      for (Vec2& p : points) {
+        p = {rng.Uniform(0, 16), rng.Uniform(0, 16)};
+        // Now and then exactly on an edge of the rectangle that crosses the region.
+        auto on_edge = [&](double& coordinate, double low, double high) {
+          const double edge = rng.Below(2) == 0 ? low : high;
+          if (rng.Below(8) == 0 && 0 <= edge && edge < 16) coordinate = edge;
+        };
+        on_edge(p.x, rect.x0, rect.x1);
+        on_edge(p.y, rect.y0, rect.y1);
+      }
+      size_t inside = 0;
+      for (size_t k = 0; k < count; ++k) {
+        if (rect.Contains(points[k])) {
+          one_by_one.Append(points[k], next_id + k);
+          ++inside;
+        }
+      }
+      EXPECT_EQ(in_bulk.AppendInside(points.data(), count, next_id, rect, sides), inside);
+      next_id += count + rng.Below(3);  // a new region: ids jump
+    }
+    EXPECT_EQ(in_bulk.count(), one_by_one.count());
+    EXPECT_EQ(Bytes(in_bulk.Finish("", world)), Bytes(one_by_one.Finish("", world)));
+  }
+  EXPECT_EQ(sides_seen, 0xFFFF) << "every set of cutting sides";
+  // Planted: a side that cuts left untested keeps a point beyond it.
+  PackedAnswerWriter one_by_one(4);
+  PackedAnswerWriter in_bulk(4);
+  const Vec2 points[3] = {{1, 2}, {3, 4}, {5, 6}};
+  const Rect rect{2, 0, 10, 10};  // cuts x0 only
+  for (uint64_t k = 1; k < 3; ++k) one_by_one.Append(points[k], 10 + k);
+  EXPECT_EQ(in_bulk.AppendInside(points, 3, 10, rect, /*sides=*/0), 3u);
+  EXPECT_NE(Bytes(in_bulk.Finish("", world)), Bytes(one_by_one.Finish("", world)));
 }
 
 TEST(PackedAnswerTest, AnEmptyWorldMessageIsStillWritten) {

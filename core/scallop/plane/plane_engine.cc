@@ -41,6 +41,9 @@ Status PlaneEngine::ValidateQuery(const World& world, const Rect& rect) const {
 std::vector<RegionKey> PlaneEngine::RegionsOverlapping(const World& world, const Rect& rect) {
   const RegionRange range = scallop::RegionsOverlapping(RegionLayout(world), rect);
   std::vector<RegionKey> keys;
+  // Sized once: grown key by key, a warm 64 d tile's 25 keys took six allocations.
+  // Every caller has checked the query (ValidateQuery), which bounds the count.
+  keys.reserve(static_cast<size_t>(range.Count()));
   for (int64_t j = range.low.j; j <= range.high.j; ++j) {
     for (int64_t i = range.low.i; i <= range.high.i; ++i) keys.push_back({i, j});
   }

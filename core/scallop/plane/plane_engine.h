@@ -136,6 +136,31 @@ inline int CuttingSides(const Rect& rect, const Rect& owned) {
          (owned.y0 < rect.y0 ? 4 : 0) | (rect.y1 < owned.y1 ? 8 : 0);
 }
 
+// 1 if p lies inside `rect` on its sides kSides (CuttingSides' bits; the
+// others are not tested), else 0, without a branch: each test a 0 or 1,
+// combined by `&`.
+template <int kSides>
+size_t InsideOnSides(const Rect& rect, Vec2 p) {
+  size_t inside = 1;
+  if constexpr ((kSides & 1) != 0) inside &= static_cast<size_t>(rect.x0 <= p.x);
+  if constexpr ((kSides & 2) != 0) inside &= static_cast<size_t>(p.x < rect.x1);
+  if constexpr ((kSides & 4) != 0) inside &= static_cast<size_t>(rect.y0 <= p.y);
+  if constexpr ((kSides & 8) != 0) inside &= static_cast<size_t>(p.y < rect.y1);
+  return inside;
+}
+
+// f(std::integral_constant<int, sides>{}) for `sides` in [0, 16) (CuttingSides),
+// returning its count: code made for the sides that cut, chosen once a region.
+template <typename F>
+size_t WithCuttingSides(int sides, F f) {
+  size_t result = 0;
+  [&]<int... kSides>(std::integer_sequence<int, kSides...>) {
+    (void)((sides == kSides && (result = f(std::integral_constant<int, kSides>{}), true)) || ...);
+  }
+  (std::make_integer_sequence<int, 16>{});
+  return result;
+}
+
 // VisitPointsInside for a region that the sides kSides (CuttingSides) of
 // `rect` cut: only those sides are tested. A rectangle's edge crosses most
 // of the regions it cuts on one side only, so a point costs one comparison
@@ -151,15 +176,8 @@ size_t VisitPointsInsideOf(const std::vector<Vec2>& points, const Rect& rect, ui
     const size_t stop = std::min(points.size(), start + kChunk);
     size_t count = 0;
     for (size_t k = start; k < stop; ++k) {
-      const Vec2 p = points[k];
-      // Each test a 0 or 1, combined by `&`: no branch.
-      size_t inside = 1;
-      if constexpr ((kSides & 1) != 0) inside &= static_cast<size_t>(rect.x0 <= p.x);
-      if constexpr ((kSides & 2) != 0) inside &= static_cast<size_t>(p.x < rect.x1);
-      if constexpr ((kSides & 4) != 0) inside &= static_cast<size_t>(rect.y0 <= p.y);
-      if constexpr ((kSides & 8) != 0) inside &= static_cast<size_t>(p.y < rect.y1);
       kept[count] = static_cast<uint32_t>(k);
-      count += inside;
+      count += InsideOnSides<kSides>(rect, points[k]);
     }
     for (size_t n = 0; n < count; ++n) visit(points[kept[n]], first_id + kept[n]);
     total += count;
@@ -175,16 +193,10 @@ size_t VisitPointsInsideOf(const std::vector<Vec2>& points, const Rect& rect, ui
 template <typename Visit>
 size_t VisitPointsInside(const std::vector<Vec2>& points, const Rect& rect, const Rect& owned,
                          uint64_t first_id, Visit& visit) {
-  size_t total = 0;
-  const int sides = CuttingSides(rect, owned);
-  [&]<int... kSides>(std::integer_sequence<int, kSides...>) {
-    // The one instance whose sides these are (sides 0, a region wholly inside, tests nothing).
-    (void)((sides == kSides &&
-            (total = VisitPointsInsideOf<kSides>(points, rect, first_id, visit), true)) ||
-           ...);
-  }
-  (std::make_integer_sequence<int, 16>{});
-  return total;
+  // Sides 0, a region wholly inside, tests nothing.
+  return WithCuttingSides(CuttingSides(rect, owned), [&](auto sides) {
+    return VisitPointsInsideOf<decltype(sides)::value>(points, rect, first_id, visit);
+  });
 }
 
 // Calls visit(position, id) for the points of `regions` (Regions or
@@ -193,7 +205,11 @@ size_t VisitPointsInside(const std::vector<Vec2>& points, const Rect& rect, cons
 // how many lie in `rect` in all. Regions wholly inside are counted, not tested.
 // A `visit` that may also be called as visit(points, count, first_id) gets
 // the points it takes of a region wholly inside in one such call (points
-// [0, count), their ids first_id + k), which a writer can copy in bulk.
+// [0, count), their ids first_id + k), which a writer can copy in bulk. One
+// that may be called as visit(points, count, first_id, rect, sides) gets a
+// region that `rect` cuts (on the sides `sides`, CuttingSides) and whose
+// points inside it all take, in one such call, and returns how many it kept:
+// those of points [0, count) inside `rect`, in order.
 template <typename Visit>
 size_t VisitPoints(const std::vector<RegionHandle>& regions, const RegionLayout& layout,
                    const Rect& rect, size_t begin, size_t end, Visit visit) {
@@ -216,7 +232,12 @@ size_t VisitPoints(const std::vector<RegionHandle>& regions, const RegionLayout&
     }
     // The page takes every point of this region inside (the usual case).
     if (index >= begin && end >= index && end - index >= points.size()) {
-      index += VisitPointsInside(points, rect, owned, first_id, visit);
+      if constexpr (std::is_invocable_r_v<size_t, Visit&, const Vec2*, size_t, uint64_t,
+                                          const Rect&, int>) {
+        index += visit(points.data(), points.size(), first_id, rect, CuttingSides(rect, owned));
+      } else {
+        index += VisitPointsInside(points, rect, owned, first_id, visit);
+      }
       continue;
     }
     for (size_t k = 0; k < points.size(); ++k) {
