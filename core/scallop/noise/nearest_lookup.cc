@@ -242,8 +242,9 @@ Status NearestLookup::Nearest(const World& world, std::span<const Vec2> position
       if (StopNow(stop)) return StopStatus();
       if (Status status = answer_from(g); !status.ok()) return status;
     }
-    if (scratch->sorted.capacity() <= kMaxScratchPositions + kScatterAhead)
+    if (scratch->sorted.capacity() <= kMaxScratchPositions + kScatterAhead) {
       scratch_.Return(std::move(scratch));
+    }
   }
   std::lock_guard lock(mutex_);
   stats_.lookups += static_cast<int64_t>(positions.size());
