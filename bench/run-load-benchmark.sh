@@ -150,38 +150,50 @@ echo "# each run: at most $duration s and $requests requests; tile $tile d; warm
 
 rows=$work/rows.tsv
 : >"$rows"
-# run SERVER MODE STREAMS: one generator run; a row in $rows with the
-# server's peak resident memory during it (MiB) and its cache's hits and
-# misses (regions generated) during it.
+# watch SERVER SAMPLES: samples the server's resident memory into SAMPLES
+# and notes its cache counters and CPU time, until its `record`.
+declare -A sampler hits_before misses_before cpu_before
+watch() {
+  local name=$1 samples=$2
+  : >"$samples"
+  sample_rss "${pid[$name]}" "$samples" &
+  sampler[$name]=$!
+  hits_before[$name]=$(cache_counter "$name" scallop_cache_hits_total)
+  misses_before[$name]=$(cache_counter "$name" scallop_cache_misses_total)
+  cpu_before[$name]=$(cpu_ticks "${pid[$name]}")
+}
+
+# record SERVER ROW SAMPLES ROUND WHAT: ends watch's sampling (failing if the
+# server died during WHAT) and appends to $rows the generator's ROW with the
+# server's peak resident memory (MiB), cache hits and misses (regions
+# generated) and CPU seconds since its watch.
+record() {
+  local name=$1 row=$2 samples=$3 round=$4 what=$5
+  kill "${sampler[$name]}" 2>/dev/null || true
+  wait "${sampler[$name]}" 2>/dev/null || true
+  if ! kill -0 "${pid[$name]}" 2>/dev/null; then
+    echo "$name exited during $what; its log ends:" >&2
+    tail -5 "$work/$name.err" >&2
+    exit 1
+  fi
+  local cpu=$(($(cpu_ticks "${pid[$name]}") - cpu_before[$name]))
+  local hits=$(($(cache_counter "$name" scallop_cache_hits_total) - hits_before[$name]))
+  local misses=$(($(cache_counter "$name" scallop_cache_misses_total) - misses_before[$name]))
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$row" "$(mib "$(sort -n "$samples" | tail -1)")" \
+    "$hits" "$misses" "$(awk -v t="$cpu" -v hz="$ticks_per_second" 'BEGIN { print t / hz }')" \
+    "$round" >>"$rows"
+}
+
+# run SERVER MODE STREAMS [ROUND]: one generator run against one server; its row in $rows.
 run() {
   local name=$1 mode=$2 streams=$3 round=${4:-0}
   local samples=$work/rss-$name-$mode-$streams
-  : >"$samples"
-  sample_rss "${pid[$name]}" "$samples" &
-  local sampler=$!
-  local hits_before misses_before
-  hits_before=$(cache_counter "$name" scallop_cache_hits_total)
-  misses_before=$(cache_counter "$name" scallop_cache_misses_total)
-  local cpu_before
-  cpu_before=$(cpu_ticks "${pid[$name]}")
+  watch "$name" "$samples"
   local row
   row=$("$generator" --target "${address[$name]}" --mode "$mode" --streams "$streams" \
     --duration "$duration" --requests "$requests" --tile "$tile" --warm-side "$warm_side" \
     --output tsv) || echo "# $name $mode $streams: errors (see the row)" >&2
-  kill "$sampler" 2>/dev/null || true
-  wait "$sampler" 2>/dev/null || true
-  if ! kill -0 "${pid[$name]}" 2>/dev/null; then
-    echo "$name exited during the $mode run with $streams streams; its log ends:" >&2
-    tail -5 "$work/$name.err" >&2
-    exit 1
-  fi
-  local cpu=$(($(cpu_ticks "${pid[$name]}") - cpu_before))
-  local hits misses
-  hits=$(($(cache_counter "$name" scallop_cache_hits_total) - hits_before))
-  misses=$(($(cache_counter "$name" scallop_cache_misses_total) - misses_before))
-  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$row" "$(mib "$(sort -n "$samples" | tail -1)")" \
-    "$hits" "$misses" "$(awk -v t="$cpu" -v hz="$ticks_per_second" 'BEGIN { print t / hz }')" \
-    "$round" >>"$rows"
+  record "$name" "$row" "$samples" "$round" "the $mode run with $streams streams"
 }
 
 # warm_round STREAMS ROUND NAME...: one load_generator run that drives the
@@ -193,15 +205,9 @@ warm_round() {
   local streams=$1 round=$2
   shift 2
   local names=("$@") targets=() name
-  declare -A sampler hits_before misses_before cpu_before
   for name in "${names[@]}"; do
     targets+=(--target "${address[$name]}")
-    : >"$work/rss-$name-warm-$streams"
-    sample_rss "${pid[$name]}" "$work/rss-$name-warm-$streams" &
-    sampler[$name]=$!
-    hits_before[$name]=$(cache_counter "$name" scallop_cache_hits_total)
-    misses_before[$name]=$(cache_counter "$name" scallop_cache_misses_total)
-    cpu_before[$name]=$(cpu_ticks "${pid[$name]}")
+    watch "$name" "$work/rss-$name-warm-$streams"
   done
   local out
   out=$("$generator" "${targets[@]}" --slice "$slice" --mode warm --streams "$streams" \
@@ -213,19 +219,8 @@ warm_round() {
   for n in "${!names[@]}"; do row[${names[$n]}]=${rows_out[$n]:-}; done
   # The rows in the table's order (null, then the scallopds), whoever went first.
   for name in null "${servers[@]}"; do
-    kill "${sampler[$name]}" 2>/dev/null || true
-    wait "${sampler[$name]}" 2>/dev/null || true
-    if ! kill -0 "${pid[$name]}" 2>/dev/null; then
-      echo "$name exited during warm round $round with $streams streams; its log ends:" >&2
-      tail -5 "$work/$name.err" >&2
-      exit 1
-    fi
-    local cpu=$(($(cpu_ticks "${pid[$name]}") - cpu_before[$name]))
-    local hits=$(($(cache_counter "$name" scallop_cache_hits_total) - hits_before[$name]))
-    local misses=$(($(cache_counter "$name" scallop_cache_misses_total) - misses_before[$name]))
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "${row[$name]}" \
-      "$(mib "$(sort -n "$work/rss-$name-warm-$streams" | tail -1)")" "$hits" "$misses" \
-      "$(awk -v t="$cpu" -v hz="$ticks_per_second" 'BEGIN { print t / hz }')" "$round" >>"$rows"
+    record "$name" "${row[$name]}" "$work/rss-$name-warm-$streams" "$round" \
+      "warm round $round with $streams streams"
   done
 }
 
