@@ -156,31 +156,21 @@ void BM_WarmAnswerBytesPacked(benchmark::State& state) {
 }
 BENCHMARK(BM_WarmAnswerBytesPacked);
 
-// The same writer without its bulk filter (AppendInside): each region the tile cuts goes
-// through VisitPointsInside's two passes (the indices kept, then an Append each), as scallopd
-// did before; the regions wholly inside are copied in runs, as above.
-struct RunsOnly {
-  server::PackedAnswerWriter& writer;
-  void Append(Vec2 position, uint64_t id) { writer.Append(position, id); }
-  void AppendRun(const Vec2* points, size_t count, uint64_t first_id) {
-    writer.AppendRun(points, count, first_id);
-  }
-};
-
-void BM_WarmAnswerBytesPackedTwoPass(benchmark::State& state) {
+// The same writer in its two-lane (SSE2) loops, as scallopd ran before the
+// four-lane ones, and still does on a CPU without AVX2.
+void BM_WarmAnswerBytesPackedTwoLanes(benchmark::State& state) {
   const std::string world_message = WorldToMessage(WarmWorld()).SerializeAsString();
   TimeWarmTiles(state, [&](const auto& regions, const RegionLayout& layout, const Rect& rect,
                            size_t upper_bound) {
-    server::PackedAnswerWriter writer(upper_bound);
-    RunsOnly runs{writer};
-    const server::AppendTo<RunsOnly> visit{runs};
+    server::PackedAnswerWriter writer(upper_bound, server::CopyLanes::kTwoLanes);
+    const server::AppendTo<server::PackedAnswerWriter> visit{writer};
     const size_t points = VisitPoints(regions, layout, rect, 0, SIZE_MAX, visit);
     grpc::ByteBuffer bytes = writer.Finish("", world_message);
     benchmark::DoNotOptimize(bytes);
     return points;
   });
 }
-BENCHMARK(BM_WarmAnswerBytesPackedTwoPass);
+BENCHMARK(BM_WarmAnswerBytesPackedTwoLanes);
 
 }  // namespace
 }  // namespace scallop

@@ -5,6 +5,10 @@
 #include <array>
 #include <cstring>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "scallop/geometry/double_lanes.h"
 #include "scallop/plane/plane_engine.h"
 
@@ -31,6 +35,21 @@ PointPair LoadPair(const Vec2* points) {
   std::memcpy(&second, &points[1], sizeof second);
   return {__builtin_shufflevector(first, second, 0, 2),
           __builtin_shufflevector(first, second, 1, 3)};
+}
+
+// The points [k, count) of AppendInsideOf's points, one at a time, after
+// `kept` kept; returns how many are kept in all.
+template <int kSides>
+size_t AppendInsideOneByOne(const Vec2* points, size_t k, size_t count, uint64_t first_id,
+                            const Rect& rect, double* __restrict xs, double* __restrict ys,
+                            uint64_t* __restrict ids, size_t kept) {
+  for (; k < count; ++k) {
+    xs[kept] = points[k].x;
+    ys[kept] = points[k].y;
+    ids[kept] = first_id + k;
+    kept += InsideOnSides<kSides>(rect, points[k]);
+  }
+  return kept;
 }
 
 // AppendInside for the sides kSides of `rect` (CuttingSides' bits). Two points
@@ -62,14 +81,121 @@ size_t AppendInsideOf(const Vec2* points, size_t count, uint64_t first_id, const
     ids[kept] = first_id + k + 1;
     kept -= static_cast<size_t>(inside[1]);
   }
-  for (; k < count; ++k) {
-    xs[kept] = points[k].x;
-    ys[kept] = points[k].y;
-    ids[kept] = first_id + k;
-    kept += InsideOnSides<kSides>(rect, points[k]);
-  }
-  return kept;
+  return AppendInsideOneByOne<kSides>(points, k, count, first_id, rect, xs, ys, ids, kept);
 }
+
+#if defined(__x86_64__)
+// The four-lane loops: AVX2 for four points at a time, compiled for it here
+// and called only where the CPU has it (CpuHasAvx2).
+#define SCALLOP_AVX2 __attribute__((target("avx2,popcnt")))
+
+bool CpuHasAvx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt"); }
+
+// The x and y of points[0, 4), each in its lanes in order.
+struct FourPoints {
+  __m256d x;
+  __m256d y;
+};
+SCALLOP_AVX2 inline FourPoints LoadFour(const Vec2* points) {
+  const __m256d first = _mm256_loadu_pd(&points[0].x);   // x0 y0 x1 y1
+  const __m256d second = _mm256_loadu_pd(&points[2].x);  // x2 y2 x3 y3
+  // unpacklo: x0 x2 x1 x3; lanes 0, 2, 1, 3 of it in order.
+  return {_mm256_permute4x64_pd(_mm256_unpacklo_pd(first, second), 0xD8),
+          _mm256_permute4x64_pd(_mm256_unpackhi_pd(first, second), 0xD8)};
+}
+
+// For each 4-bit mask of lanes kept, the 32-bit lanes that move the kept
+// 64-bit lanes to the front, in order (the rest are left as lane 0).
+struct CompressTable {
+  alignas(32) int32_t lanes[16][8];
+};
+constexpr CompressTable MakeCompressTable() {
+  CompressTable table{};
+  for (int mask = 0; mask < 16; ++mask) {
+    int out = 0;
+    for (int lane = 0; lane < 4; ++lane) {
+      if ((mask >> lane & 1) == 0) continue;
+      table.lanes[mask][2 * out] = 2 * lane;
+      table.lanes[mask][2 * out + 1] = 2 * lane + 1;
+      ++out;
+    }
+  }
+  return table;
+}
+constexpr CompressTable kCompress = MakeCompressTable();
+
+SCALLOP_AVX2 void AppendRunInFourLanes(const Vec2* points, size_t count, uint64_t first_id,
+                                       double* __restrict xs, double* __restrict ys,
+                                       uint64_t* __restrict ids) {
+  __m256i id = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<int64_t>(first_id)),
+                                _mm256_setr_epi64x(0, 1, 2, 3));
+  const __m256i four = _mm256_set1_epi64x(4);
+  size_t k = 0;
+  for (; k + 4 <= count; k += 4) {
+    const FourPoints four_points = LoadFour(points + k);
+    _mm256_storeu_pd(xs + k, four_points.x);
+    _mm256_storeu_pd(ys + k, four_points.y);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(ids + k), id);
+    id = _mm256_add_epi64(id, four);
+  }
+  for (; k < count; ++k) {
+    xs[k] = points[k].x;
+    ys[k] = points[k].y;
+    ids[k] = first_id + k;
+  }
+}
+
+// AppendInsideOf in four lanes: each side one comparison of four points, the
+// kept lanes moved to the front (kCompress) and all four stored at `kept`,
+// which moves past the kept ones. The stores of points [k, k + 4) end before
+// index k + 4 <= count: within the room for all `count` that AppendInside
+// requires, as the two-lane loop's.
+template <int kSides>
+SCALLOP_AVX2 size_t AppendInsideInFourLanes(const Vec2* points, size_t count, uint64_t first_id,
+                                            const Rect& rect, double* __restrict xs,
+                                            double* __restrict ys, uint64_t* __restrict ids) {
+  const __m256d x0 = _mm256_set1_pd(rect.x0);
+  const __m256d x1 = _mm256_set1_pd(rect.x1);
+  const __m256d y0 = _mm256_set1_pd(rect.y0);
+  const __m256d y1 = _mm256_set1_pd(rect.y1);
+  __m256i id = _mm256_add_epi64(_mm256_set1_epi64x(static_cast<int64_t>(first_id)),
+                                _mm256_setr_epi64x(0, 1, 2, 3));
+  const __m256i four = _mm256_set1_epi64x(4);
+  size_t kept = 0;
+  size_t k = 0;
+  for (; k + 4 <= count; k += 4) {
+    const FourPoints p = LoadFour(points + k);
+    // As InsideOnSides: ordered comparisons, false for a NaN.
+    __m256d inside = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+    if constexpr ((kSides & 1) != 0) {
+      inside = _mm256_and_pd(inside, _mm256_cmp_pd(x0, p.x, _CMP_LE_OQ));
+    }
+    if constexpr ((kSides & 2) != 0) {
+      inside = _mm256_and_pd(inside, _mm256_cmp_pd(p.x, x1, _CMP_LT_OQ));
+    }
+    if constexpr ((kSides & 4) != 0) {
+      inside = _mm256_and_pd(inside, _mm256_cmp_pd(y0, p.y, _CMP_LE_OQ));
+    }
+    if constexpr ((kSides & 8) != 0) {
+      inside = _mm256_and_pd(inside, _mm256_cmp_pd(p.y, y1, _CMP_LT_OQ));
+    }
+    const int mask = _mm256_movemask_pd(inside);
+    const __m256i move = _mm256_load_si256(reinterpret_cast<const __m256i*>(kCompress.lanes[mask]));
+    _mm256_storeu_pd(xs + kept,
+                     _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(p.x), move)));
+    _mm256_storeu_pd(ys + kept,
+                     _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(p.y), move)));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(ids + kept),
+                        _mm256_permutevar8x32_epi32(id, move));
+    kept += static_cast<size_t>(_mm_popcnt_u32(static_cast<unsigned>(mask)));
+    id = _mm256_add_epi64(id, four);
+  }
+  return AppendInsideOneByOne<kSides>(points, k, count, first_id, rect, xs, ys, ids, kept);
+}
+#undef SCALLOP_AVX2
+#else
+bool CpuHasAvx2() { return false; }
+#endif
 
 size_t VarintSize(uint64_t value) {
   size_t size = 1;
@@ -85,8 +211,10 @@ void AppendHeader(std::string& out, char tag, uint64_t length) {
 
 }  // namespace
 
-PackedAnswerWriter::PackedAnswerWriter(size_t capacity)
-    : capacity_(capacity), data_(3 * sizeof(double) * capacity) {
+PackedAnswerWriter::PackedAnswerWriter(size_t capacity, CopyLanes lanes)
+    : capacity_(capacity),
+      data_(3 * sizeof(double) * capacity),
+      four_lanes_(lanes == CopyLanes::kFastest && CpuHasAvx2()) {
   // The slice is ours alone until Finish shares it; grpc::Slice hands out only const bytes.
   auto* bytes = const_cast<uint8_t*>(data_.begin());
   xs_ = reinterpret_cast<double*>(bytes);
@@ -95,6 +223,13 @@ PackedAnswerWriter::PackedAnswerWriter(size_t capacity)
 }
 
 void PackedAnswerWriter::AppendRun(const Vec2* points, size_t count, uint64_t first_id) {
+#if defined(__x86_64__)
+  if (four_lanes_) {
+    AppendRunInFourLanes(points, count, first_id, xs_ + count_, ys_ + count_, ids_ + count_);
+    count_ += static_cast<uint32_t>(count);
+    return;
+  }
+#endif
   // Two points at a time (LoadPair): half the instructions of a point at a
   // time, most of a warm tile being whole regions.
   double* __restrict xs = xs_ + count_;
@@ -119,6 +254,12 @@ void PackedAnswerWriter::AppendRun(const Vec2* points, size_t count, uint64_t fi
 size_t PackedAnswerWriter::AppendInside(const Vec2* points, size_t count, uint64_t first_id,
                                         const Rect& rect, int sides) {
   const size_t kept = WithCuttingSides(sides, [&](auto cutting) {
+#if defined(__x86_64__)
+    if (four_lanes_) {
+      return AppendInsideInFourLanes<decltype(cutting)::value>(
+          points, count, first_id, rect, xs_ + count_, ys_ + count_, ids_ + count_);
+    }
+#endif
     return AppendInsideOf<decltype(cutting)::value>(points, count, first_id, rect, xs_ + count_,
                                                     ys_ + count_, ids_ + count_);
   });

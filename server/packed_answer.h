@@ -22,12 +22,17 @@ namespace scallop::server {
 // Packed doubles and fixed64 are little-endian on the wire, as in memory here.
 static_assert(std::endian::native == std::endian::little, "packed_answer.h copies raw words");
 
+// The loops AppendRun and AppendInside run: four points at a time in AVX2
+// where the CPU has it (kFastest), else two in SSE2 (kTwoLanes); both write
+// the same bytes (tests/packed_answer_test.cc compares them).
+enum class CopyLanes { kFastest, kTwoLanes };
+
 // The appender WritePoints' callers fill (encoded_points.h): Append and StartLayer.
 // Not thread-safe; one answer per writer.
 class PackedAnswerWriter {
  public:
   // Room for `capacity` points: one allocation of 24 bytes a point.
-  explicit PackedAnswerWriter(size_t capacity);
+  explicit PackedAnswerWriter(size_t capacity, CopyLanes lanes = CopyLanes::kFastest);
 
   // REQUIRES: fewer than `capacity` points appended so far.
   void Append(Vec2 position, uint64_t id) {
@@ -65,6 +70,7 @@ class PackedAnswerWriter {
   // Not size_t, for the reason PointsAppender gives (world_messages.h): a
   // store to ids_ could alias it, and the copy would reload it a point.
   uint32_t count_ = 0;
+  bool four_lanes_;
 };
 
 // What VisitPoints calls for an appender (WritePoints' or this writer): its

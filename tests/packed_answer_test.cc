@@ -99,13 +99,15 @@ TEST(PackedAnswerTest, WritesTheBytesProtobufWrites) {
 // copy) and longer, at every offset in the writer, in random chunks.
 TEST(PackedAnswerTest, RunsWriteWhatPointsOneByOneWrite) {
   const std::string world = WorldToMessage(*World::Create({.seed = 7})).SerializeAsString();
-  for (const uint64_t seed : {1, 2, 3, 4, 5}) {
+  for (const uint64_t seed : {1, 2, 3, 4, 5, 11, 12, 13, 14, 15}) {
+    // Both loops, whatever the CPU: the fastest it has, and two lanes.
+    const CopyLanes lanes = seed > 10 ? CopyLanes::kTwoLanes : CopyLanes::kFastest;
     SCOPED_TRACE("seed " + std::to_string(seed));
     Rng rng(seed);
     std::vector<Vec2> points(1000);
     for (Vec2& p : points) p = {rng.Uniform(-1e6, 1e6), rng.Uniform(-1e6, 1e6)};
     PackedAnswerWriter one_by_one(points.size());
-    PackedAnswerWriter in_runs(points.size());
+    PackedAnswerWriter in_runs(points.size(), lanes);
     uint64_t next_id = rng.NextBits() >> 1;
     for (size_t start = 0; start < points.size();) {
       const size_t count =
@@ -119,12 +121,14 @@ TEST(PackedAnswerTest, RunsWriteWhatPointsOneByOneWrite) {
     EXPECT_EQ(Bytes(in_runs.Finish("", world)), Bytes(one_by_one.Finish("", world)));
   }
   // Planted: a run whose ids start one off.
-  PackedAnswerWriter one_by_one(3);
-  PackedAnswerWriter in_runs(3);
-  const Vec2 points[3] = {{1, 2}, {3, 4}, {5, 6}};
-  for (uint64_t k = 0; k < 3; ++k) one_by_one.Append(points[k], 10 + k);
-  in_runs.AppendRun(points, 3, 11);
-  EXPECT_NE(Bytes(in_runs.Finish("", world)), Bytes(one_by_one.Finish("", world)));
+  for (const CopyLanes lanes : {CopyLanes::kFastest, CopyLanes::kTwoLanes}) {
+    PackedAnswerWriter one_by_one(5);
+    PackedAnswerWriter in_runs(5, lanes);
+    const Vec2 points[5] = {{1, 2}, {3, 4}, {5, 6}, {7, 8}, {9, 10}};
+    for (uint64_t k = 0; k < 5; ++k) one_by_one.Append(points[k], 10 + k);
+    in_runs.AppendRun(points, 5, 11);
+    EXPECT_NE(Bytes(in_runs.Finish("", world)), Bytes(one_by_one.Finish("", world)));
+  }
 }
 
 // AppendInside (a cut region's points filtered in bulk) against the points
@@ -136,11 +140,13 @@ TEST(PackedAnswerTest, RunsWriteWhatPointsOneByOneWrite) {
 TEST(PackedAnswerTest, CutRegionsWriteWhatTheirPointsInsideWrite) {
   const std::string world = WorldToMessage(*World::Create({.seed = 7})).SerializeAsString();
   int sides_seen = 0;
-  for (const uint64_t seed : {1, 2, 3, 4, 5, 6, 7, 8}) {
+  for (const uint64_t seed : {1, 2, 3, 4, 5, 6, 7, 8, 11, 12, 13, 14, 15, 16, 17, 18}) {
+    // Both loops, whatever the CPU: the fastest it has, and two lanes.
+    const CopyLanes lanes = seed > 10 ? CopyLanes::kTwoLanes : CopyLanes::kFastest;
     SCOPED_TRACE("seed " + std::to_string(seed));
     Rng rng(seed);
     PackedAnswerWriter one_by_one(20000);
-    PackedAnswerWriter in_bulk(20000);
+    PackedAnswerWriter in_bulk(20000, lanes);
     uint64_t next_id = rng.NextBits() >> 1;
     for (int region = 0; region < 200; ++region) {
       // A region owning [0, 16)^2, cut by a rectangle whose sides fall inside it or beyond.
@@ -178,13 +184,47 @@ TEST(PackedAnswerTest, CutRegionsWriteWhatTheirPointsInsideWrite) {
   }
   EXPECT_EQ(sides_seen, 0xFFFF) << "every set of cutting sides";
   // Planted: a side that cuts left untested keeps a point beyond it.
-  PackedAnswerWriter one_by_one(4);
-  PackedAnswerWriter in_bulk(4);
-  const Vec2 points[3] = {{1, 2}, {3, 4}, {5, 6}};
-  const Rect rect{2, 0, 10, 10};  // cuts x0 only
-  for (uint64_t k = 1; k < 3; ++k) one_by_one.Append(points[k], 10 + k);
-  EXPECT_EQ(in_bulk.AppendInside(points, 3, 10, rect, /*sides=*/0), 3u);
-  EXPECT_NE(Bytes(in_bulk.Finish("", world)), Bytes(one_by_one.Finish("", world)));
+  for (const CopyLanes lanes : {CopyLanes::kFastest, CopyLanes::kTwoLanes}) {
+    PackedAnswerWriter one_by_one(6);
+    PackedAnswerWriter in_bulk(6, lanes);
+    const Vec2 points[5] = {{1, 2}, {3, 4}, {5, 6}, {7, 8}, {9, 10}};
+    const Rect rect{2, 0, 10, 10};  // cuts x0 only
+    for (uint64_t k = 1; k < 5; ++k) one_by_one.Append(points[k], 10 + k);
+    EXPECT_EQ(in_bulk.AppendInside(points, 5, 10, rect, /*sides=*/0), 5u);
+    EXPECT_NE(Bytes(in_bulk.Finish("", world)), Bytes(one_by_one.Finish("", world)));
+  }
+}
+
+// A writer with just the room its calls require (a run's points, all of a
+// cut region's), filled by a run and then a cut region of every size up to
+// 13 in both loops: the loops' stores beyond the points kept stay inside the
+// writer's buffer (AddressSanitizer checks that in its build) and leave the
+// points written intact.
+TEST(PackedAnswerTest, FourLaneLoopsStayInTheirRoom) {
+  const std::string world = WorldToMessage(*World::Create({.seed = 7})).SerializeAsString();
+  Rng rng(21);
+  for (const CopyLanes lanes : {CopyLanes::kFastest, CopyLanes::kTwoLanes}) {
+    for (size_t count = 0; count <= 13; ++count) {
+      std::vector<Vec2> points(count);
+      for (Vec2& p : points) p = {rng.Uniform(0, 16), rng.Uniform(0, 16)};
+      const Rect rect{rng.Uniform(0, 8), 0, 16, 16};
+      size_t inside = 0;
+      for (const Vec2& p : points) inside += rect.Contains(p) ? 1 : 0;
+      // The run first, then the cut region, whose loop's stores go furthest beyond its points.
+      PackedAnswerWriter one_by_one(2 * count);
+      for (size_t k = 0; k < count; ++k) one_by_one.Append(points[k], 200 + k);
+      for (size_t k = 0; k < count; ++k) {
+        if (rect.Contains(points[k])) one_by_one.Append(points[k], 100 + k);
+      }
+      PackedAnswerWriter tight(2 * count, lanes);
+      tight.AppendRun(points.data(), count, 200);
+      EXPECT_EQ(
+          tight.AppendInside(points.data(), count, 100, rect, CuttingSides(rect, {0, 0, 16, 16})),
+          inside);
+      EXPECT_EQ(Bytes(tight.Finish("", world)), Bytes(one_by_one.Finish("", world)))
+          << count << " points";
+    }
+  }
 }
 
 TEST(PackedAnswerTest, AnEmptyWorldMessageIsStillWritten) {

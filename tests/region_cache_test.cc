@@ -134,6 +134,71 @@ TEST(RegionCacheTest, PeekAllAnswersAsAModelOfTheCache) {
   }
 }
 
+// PeekAll against a model under eviction: a budget of a few dozen regions,
+// keys of two worlds over 8 x 8 regions astride the origin (blocks of the
+// directory on both sides of zero), random publishes and PeekAlls. The cache
+// holds the only reference to what it stores, so a region is cached exactly
+// while the model's weak pointer to it lives: PeekAll must find every key
+// so, or fail, and never return an evicted region (a slot left behind).
+TEST(RegionCacheTest, PeekAllAnswersAsAModelUnderEviction) {
+  const World first = ValidWorld({.seed = 5});
+  const World other = ValidWorld({.seed = 6});
+  const std::vector<const World*> worlds = {&first, &other};
+  auto region_at = [](RegionKey key) {
+    return std::make_shared<const RegionPoints>(RegionPoints{key, {{0, 0}}, 0, {}, {}});
+  };
+  const int64_t one_region =
+      static_cast<int64_t>(region_at({0, 0})->Bytes()) + RegionCache::kEntryBookkeepingBytes;
+  for (const uint64_t seed : {1, 2, 3}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    RegionCache cache(64 * one_region);
+    std::map<std::pair<size_t, RegionKey>, std::weak_ptr<const RegionPoints>> published;
+    Rng rng(seed);
+    auto random_key = [&] {
+      return RegionKey{static_cast<int64_t>(rng.Below(8)) - 4,
+                       static_cast<int64_t>(rng.Below(8)) - 4};
+    };
+    int successes = 0;
+    for (int step = 0; step < 5000; ++step) {
+      const size_t w = rng.Below(worlds.size());
+      if (rng.Below(2) == 0) {
+        const RegionKey key = random_key();
+        const RegionCache::Lookup lookup = cache.Acquire(*worlds[w], key);
+        const bool expired = published[{w, key}].expired();
+        ASSERT_EQ(lookup.must_generate, expired) << "step " << step;
+        if (lookup.must_generate) {
+          RegionHandle region = region_at(key);
+          published[{w, key}] = region;
+          cache.Publish(*worlds[w], key, std::move(region));
+        }
+        continue;
+      }
+      // A small tile, row by row, as GetPoints asks.
+      const RegionKey corner = random_key();
+      std::vector<RegionKey> keys;
+      const int64_t columns = 1 + static_cast<int64_t>(rng.Below(3));
+      const int64_t rows = 1 + static_cast<int64_t>(rng.Below(3));
+      for (int64_t j = 0; j < rows; ++j) {
+        for (int64_t i = 0; i < columns; ++i) keys.push_back({corner.i + i, corner.j + j});
+      }
+      bool all_cached = true;
+      for (const RegionKey& key : keys) {
+        const auto it = published.find({w, key});
+        all_cached &= it != published.end() && !it->second.expired();
+      }
+      std::vector<RegionHandle> regions;
+      ASSERT_EQ(cache.PeekAll(*worlds[w], keys, regions), all_cached) << "step " << step;
+      successes += all_cached ? 1 : 0;
+      for (size_t k = 0; k < regions.size(); ++k) {
+        EXPECT_EQ(regions[k], published.at({w, keys[k]}).lock()) << "step " << step;
+      }
+    }
+    EXPECT_GT(cache.Stats().evictions, 500);
+    EXPECT_GT(successes, 100);
+    EXPECT_LE(cache.Stats().bytes, 64 * one_region);
+  }
+}
+
 // PeekAll neither waits on nor returns a region being generated, and the
 // regions it read are the most recently used: a publish over budget evicts
 // the others first.
@@ -142,8 +207,10 @@ TEST(RegionCacheTest, PeekAllSkipsPendingRegionsAndRefreshesWhatItRead) {
   auto region_at = [](RegionKey key) {
     return std::make_shared<const RegionPoints>(RegionPoints{key, {{0, 0}}, 0, {}, {}});
   };
-  const int64_t one_region = static_cast<int64_t>(region_at({0, 0})->Bytes()) + 384;
-  RegionCache cache(3 * one_region);  // room for three
+  const int64_t one_region =
+      static_cast<int64_t>(region_at({0, 0})->Bytes()) + RegionCache::kEntryBookkeepingBytes;
+  // Room for three, in one block of the directory.
+  RegionCache cache(3 * one_region + RegionCache::kBlockBookkeepingBytes);
   const std::vector<RegionKey> keys = {{0, 0}, {1, 0}, {2, 0}};
   for (const RegionKey& key : keys) {
     ASSERT_TRUE(cache.Acquire(world, key).must_generate);
