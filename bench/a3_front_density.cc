@@ -5,7 +5,9 @@
 //   point    a 200 d square grown from its centre, by distance to the centre;
 //   flat     [0, 80) x [0, 400) grown from one straight front at x = 0, by x;
 //   meeting  [0, GAP) x [0, 400) grown from two straight fronts, x = 0 and
-//            x = GAP, which meet in between, by x.
+//            x = GAP, which meet in between, by x;
+//   frozen   the same, but the front at x = GAP only constrains (its points
+//            are inert: they seed nothing), so one front grows into it.
 // A straight front is a cut through A3's interior: the points with x in
 // [-2, 0) of an A3 sample of [-12, 12) x [0, 400) (a sample's own edge would be
 // a wall layer), mirrored for the right front. Points within 3 d of the
@@ -16,7 +18,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
-#include <span>
 #include <vector>
 
 #include "scallop/random/rng.h"
@@ -47,12 +48,12 @@ struct Profile {
   }
 };
 
-std::vector<Vec2> Sample(const Rect& rect, std::span<const Vec2> fixed, uint64_t seed) {
+// A3 on `rect` grown from the origin.
+std::vector<Vec2> SampleFromOrigin(const Rect& rect, uint64_t seed) {
   SamplingProblem problem;
   problem.domain.rect = rect;
   problem.min_distance = 1.0;
-  problem.fixed_points = fixed;
-  if (fixed.empty()) problem.seed_area = Rect{-1e-9, -1e-9, 1e-9, 1e-9};
+  problem.seed_area = Rect{-1e-9, -1e-9, 1e-9, 1e-9};
   Rng rng(seed);
   return SampleBoundary(problem, rng);
 }
@@ -60,14 +61,14 @@ std::vector<Vec2> Sample(const Rect& rect, std::span<const Vec2> fixed, uint64_t
 // A straight front along x = 0 facing +x: see the file's comment.
 std::vector<Vec2> StraightFront(uint64_t seed) {
   std::vector<Vec2> front;
-  for (Vec2 p : Sample(Rect{-12, 0, 12, kStripHeight}, {}, seed)) {
+  for (Vec2 p : SampleFromOrigin(Rect{-12, 0, 12, kStripHeight}, seed)) {
     if (p.x >= -2 && p.x < 0) front.push_back(p);
   }
   return front;
 }
 
 void AddGrownFromPoint(uint64_t seed, Profile& profile) {
-  for (Vec2 p : Sample(Rect{-100, -100, 100, 100}, {}, seed)) {
+  for (Vec2 p : SampleFromOrigin(Rect{-100, -100, 100, 100}, seed)) {
     const auto bin = static_cast<size_t>(std::hypot(p.x, p.y));
     if (bin < profile.points.size()) profile.points[bin] += 1;
   }
@@ -76,13 +77,24 @@ void AddGrownFromPoint(uint64_t seed, Profile& profile) {
   }
 }
 
-// Grows [0, width) from a front at x = 0 and, with `meeting`, one at x = width.
-void AddGrownFromFronts(uint64_t seed, double width, bool meeting, Profile& profile) {
-  std::vector<Vec2> fixed = StraightFront(2 * seed);
-  if (meeting) {
-    for (Vec2 p : StraightFront(2 * seed + 1)) fixed.push_back(Vec2{width - p.x, p.y});
+enum class RightSide { kNone, kGrowing, kFrozen };
+
+// Grows [0, width) from a front at x = 0, and one at x = width as `right` says.
+void AddGrownFromFronts(uint64_t seed, double width, RightSide right, Profile& profile) {
+  SamplingProblem problem;
+  problem.domain.rect = Rect{0, 0, width, kStripHeight};
+  problem.min_distance = 1.0;
+  const std::vector<Vec2> left = StraightFront(2 * seed);
+  std::vector<Vec2> mirrored;
+  if (right != RightSide::kNone) {
+    for (Vec2 p : StraightFront(2 * seed + 1)) mirrored.push_back(Vec2{width - p.x, p.y});
   }
-  for (Vec2 p : Sample(Rect{0, 0, width, kStripHeight}, fixed, seed)) {
+  std::vector<Vec2> fixed = left;
+  if (right == RightSide::kGrowing) fixed.insert(fixed.end(), mirrored.begin(), mirrored.end());
+  problem.fixed_points = fixed;
+  if (right == RightSide::kFrozen) problem.inert_points = mirrored;
+  Rng rng(seed);
+  for (Vec2 p : SampleBoundary(problem, rng)) {
     if (p.y < kEndMargin || p.y >= kStripHeight - kEndMargin) continue;
     const auto bin = static_cast<size_t>(p.x);
     if (bin < profile.points.size()) profile.points[bin] += 1;
@@ -102,13 +114,16 @@ int main(int argc, char** argv) {
   Profile point(60);
   Profile flat(80);
   Profile meeting(gap);
+  Profile frozen(gap);
   for (int s = 0; s < seeds; ++s) {
     const auto seed = static_cast<uint64_t>(1000 + s);
     AddGrownFromPoint(seed, point);
-    AddGrownFromFronts(seed, 80, false, flat);
-    AddGrownFromFronts(seed, gap, true, meeting);
+    AddGrownFromFronts(seed, 80, RightSide::kNone, flat);
+    AddGrownFromFronts(seed, gap, RightSide::kGrowing, meeting);
+    AddGrownFromFronts(seed, gap, RightSide::kFrozen, frozen);
   }
   point.Print("point");
   flat.Print("flat");
   meeting.Print("meeting");
+  frozen.Print("frozen");
 }
