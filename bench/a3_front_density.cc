@@ -77,22 +77,29 @@ void AddGrownFromPoint(uint64_t seed, Profile& profile) {
   }
 }
 
+// The two straight fronts of one seed, both along x = 0 facing +x: the right
+// one is mirrored into place by the run that uses it.
+struct Fronts {
+  std::vector<Vec2> left;
+  std::vector<Vec2> right;
+};
+
 enum class RightSide { kNone, kGrowing, kFrozen };
 
-// Grows [0, width) from a front at x = 0, and one at x = width as `right` says.
-void AddGrownFromFronts(uint64_t seed, double width, RightSide right, Profile& profile) {
+// Grows [0, width) from fronts.left at x = 0, and fronts.right at x = width as `right` says.
+void AddGrownFromFronts(uint64_t seed, const Fronts& fronts, double width, RightSide right,
+                        Profile& profile) {
+  std::vector<Vec2> fixed = fronts.left;
+  std::vector<Vec2> inert;
+  if (right != RightSide::kNone) {
+    std::vector<Vec2>& side = right == RightSide::kGrowing ? fixed : inert;
+    for (Vec2 p : fronts.right) side.push_back(Vec2{width - p.x, p.y});
+  }
   SamplingProblem problem;
   problem.domain.rect = Rect{0, 0, width, kStripHeight};
   problem.min_distance = 1.0;
-  const std::vector<Vec2> left = StraightFront(2 * seed);
-  std::vector<Vec2> mirrored;
-  if (right != RightSide::kNone) {
-    for (Vec2 p : StraightFront(2 * seed + 1)) mirrored.push_back(Vec2{width - p.x, p.y});
-  }
-  std::vector<Vec2> fixed = left;
-  if (right == RightSide::kGrowing) fixed.insert(fixed.end(), mirrored.begin(), mirrored.end());
   problem.fixed_points = fixed;
-  if (right == RightSide::kFrozen) problem.inert_points = mirrored;
+  problem.inert_points = inert;
   Rng rng(seed);
   for (Vec2 p : SampleBoundary(problem, rng)) {
     if (p.y < kEndMargin || p.y >= kStripHeight - kEndMargin) continue;
@@ -117,10 +124,11 @@ int main(int argc, char** argv) {
   Profile frozen(gap);
   for (int s = 0; s < seeds; ++s) {
     const auto seed = static_cast<uint64_t>(1000 + s);
+    const Fronts fronts{StraightFront(2 * seed), StraightFront(2 * seed + 1)};
     AddGrownFromPoint(seed, point);
-    AddGrownFromFronts(seed, 80, RightSide::kNone, flat);
-    AddGrownFromFronts(seed, gap, RightSide::kGrowing, meeting);
-    AddGrownFromFronts(seed, gap, RightSide::kFrozen, frozen);
+    AddGrownFromFronts(seed, fronts, 80, RightSide::kNone, flat);
+    AddGrownFromFronts(seed, fronts, gap, RightSide::kGrowing, meeting);
+    AddGrownFromFronts(seed, fronts, gap, RightSide::kFrozen, frozen);
   }
   point.Print("point");
   flat.Print("flat");
