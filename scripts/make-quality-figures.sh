@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Makes the spectral figures of docs/quality.md with `scallop analyze`, and
-# prints the numbers the text quotes. About 10 minutes of one core, most of it
+# prints the numbers the text quotes. About 12 minutes of one core, most of it
 # Mitchell's best candidate (O(N^2) per set). Usage, from the repository root
 # after a Release build: scripts/make-quality-figures.sh [path/to/scallop]
 set -euo pipefail
@@ -29,5 +29,19 @@ for algorithm in a3 a1; do
   "$scallop" analyze --algorithm "$algorithm" --sets 400 \
     --rect 4,4,12,12 --rect 12,4,20,12 --rect -4,-4,4,4 --label interior,seam,corner \
     --png "$images/periodogram-seams-$algorithm.png" --plot "$images/radial-seams-$algorithm.svg"
+done
+# Layered worlds: the forest's layers one after another (the plane's window and a bounded
+# square) against Wei's joint multi-class darts, and each spacing alone by A3 and by dart
+# throwing; 16 sets of a 256 x 256 square.
+forest=(--seed 1 --layer trees=8 --layer bushes=3 --layer rocks=1.5 --sets 16)
+echo "== Layers, the plane's window"
+"$scallop" analyze "${forest[@]}" --rect 0,0,256,256
+for algorithm in a3 wei; do
+  echo "== Layers on a bounded square, $algorithm"
+  "$scallop" analyze "${forest[@]}" --domain 0,0,256,256 --algorithm "$algorithm"
+done
+for d in 8 3 1.5; do
+  echo "== One class of spacing $d, A3 and dart throwing"
+  "$scallop" analyze --seed 1 --sets 16 --domain 0,0,256,256 --min-distance "$d" --algorithm a3,dart
 done
 ls -l "$images"

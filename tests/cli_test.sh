@@ -446,7 +446,19 @@ check "analyze layers: no pair across layers closer than D" \
 check "analyze layers: 6 cross histograms" \
   python3 -c "import json,sys; a=json.load(open('$work/out')); sys.exit(len(a['cross']) != 6)"
 check "analyze layers --png: a PNG" test "$(head -c 4 "$work/layers.png" | tail -c 3)" = PNG
-expect_bad_argument "--rect: a layered world" analyze "${forest[@]}" --domain 0,0,20,20
+# On a --domain alone: the ordered layers (a3) and Wei's joint darts (wei), which keep D too
+# and, being dart throwing, stop short of the ordered layers' counts.
+for algorithm in a3 wei; do
+  expect_exit 0 analyze "${forest[@]}" --domain 0,0,60,60 --algorithm $algorithm --sets 2 --json
+  cp "$work/out" "$work/bounded-$algorithm.json"
+  check "analyze layers --domain ($algorithm): no pair across layers closer than D" \
+    python3 -c "import json,sys; a=json.load(open('$work/out')); sys.exit(any(sum(c['neighbours_per_point'][:20]) for c in a['cross']) or [l['name'] for l in a['layers']] != ['trees','bushes','rocks','union'])"
+done
+check "analyze layers --domain: wei fills less than the ordered layers" \
+  python3 -c "import json,sys; u=lambda n: json.load(open('$work/bounded-'+n+'.json'))['layers'][3]['mean_points']; sys.exit(not 0.5 * u('a3') < u('wei') < u('a3'))"
+expect_bad_argument "--rect: a layered world" analyze "${forest[@]}" --domain 0,0,20,20 --rect 0,0,20,20
+expect_bad_argument "--algorithm: layers on a --domain take a3" analyze "${forest[@]}" --domain 0,0,20,20 --algorithm bridson
+expect_bad_argument "--algorithm: a layered world is a3's" analyze "${forest[@]}" --rect 0,0,20,20 --algorithm wei
 expect_bad_argument "world.layers[1].name: 'trees' is already" plane --layer trees=8 --layer trees=3 --rect 0,0,8,8
 expect_bad_argument "world.exclusions[1]: the matrix is not symmetric" plane "${forest[@]}" \
   --exclusion trees,bushes=2 --exclusion bushes,trees=3 --rect 0,0,8,8

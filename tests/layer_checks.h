@@ -12,6 +12,7 @@
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/world_layers.h"
 #include "scallop/random/rng.h"
+#include "scallop/sampling/layered_sampler.h"
 #include "tests/field_test_fields.h"
 #include "tests/test_worlds.h"
 
@@ -29,6 +30,14 @@ inline World Forest(uint64_t seed, bool field_bushes = false) {
     spec.exclusions = {{.first = "rocks", .second = "trees", .distance = 2.5}};
   }
   return ValidWorld(spec);
+}
+
+// A bounded run's points in the form the checks below read (no ids).
+inline PlanePoints AsPlanePoints(const LayeredPoints& sampled) {
+  PlanePoints points;
+  points.positions = sampled.positions;
+  points.layers = sampled.layers;
+  return points;
 }
 
 // The rule between two points of layers a and b: a layer's own spacing (max of R at both for a

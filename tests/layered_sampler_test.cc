@@ -23,11 +23,7 @@ namespace {
 PlanePoints Sampled(const LayeredSamplerOptions& options) {
   StatusOr<LayeredPoints> sampled = SampleLayers(options);
   EXPECT_TRUE(sampled.ok()) << sampled.status().message();
-  if (!sampled.ok()) return {};
-  PlanePoints points;
-  points.positions = sampled->positions;
-  points.layers = sampled->layers;
-  return points;
+  return sampled.ok() ? AsPlanePoints(*sampled) : PlanePoints{};
 }
 
 // The domain less a hair: a spot on the far edges of a half-open rectangle can be approached by

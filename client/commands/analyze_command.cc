@@ -12,6 +12,7 @@
 
 #include "client/analysis/field_analysis.h"
 #include "client/analysis/layer_analysis.h"
+#include "client/analysis/layer_sets.h"
 #include "client/analysis/periodogram_image.h"
 #include "client/analysis/point_file.h"
 #include "client/analysis/series.h"
@@ -326,12 +327,19 @@ int RunFieldAnalyze(const AnalyzeArguments& arguments, const RadiusFieldSpec& sp
   return 0;
 }
 
-// A layered world's sets on one --rect window: each layer's spectrum and rho, the union's, and
-// the pair distances across layers over D; --png: the layers' and the union's periodograms.
+// A layered world's sets, on one --rect window of the plane or sampled on a --domain alone (a3:
+// one layer after another; wei: Wei's joint scheme, for comparison): each layer's spectrum and
+// rho, the union's, and the pair distances across layers over D; --png: the layers' and the
+// union's periodograms.
 int RunLayeredAnalyze(const AnalyzeArguments& arguments) {
   const auto bad = [](const Status& status) { return ReportBadArguments("analyze", status); };
-  if (!arguments.inputs.empty() || !arguments.domain.empty() || arguments.rects.size() != 1) {
-    return bad(InvalidArgument("--rect: a layered world is analysed on one --rect window"));
+  const bool bounded = !arguments.domain.empty();
+  if (!arguments.inputs.empty() || arguments.rects.size() != (bounded ? 0 : 1)) {
+    return bad(InvalidArgument(
+        "--rect: a layered world is analysed on one --rect window or sampled on a --domain"));
+  }
+  if (arguments.algorithms.size() != 1) {
+    return bad(InvalidArgument("--algorithm: one algorithm with layers"));
   }
   if (!arguments.plot.empty()) return bad(InvalidArgument("--plot: not with layers"));
   if (arguments.sets < 1 || arguments.sets > 1000) {
@@ -339,25 +347,30 @@ int RunLayeredAnalyze(const AnalyzeArguments& arguments) {
   }
   StatusOr<World> world = ParseWorld(arguments.world);
   if (!world.ok()) return bad(world.status());
-  StatusOr<Rect> window = ParseRect(arguments.rects.front(), "--rect");
+  StatusOr<Rect> window = bounded ? ParseRect(arguments.domain, "--domain")
+                                  : ParseRect(arguments.rects.front(), "--rect");
   if (!window.ok()) return bad(window.status());
-  StatusOr<PlaneEngineOptions> engine_options = ParseEngineOptions(arguments.world);
-  if (!engine_options.ok()) return bad(engine_options.status());
-  PlaneEngine engine(*engine_options);
-  std::vector<PlanePoints> sets;
-  for (int s = 0; s < arguments.sets; ++s) {
-    StatusOr<PlanePoints> points =
-        engine.Points(world->WithSeed(world->seed() + static_cast<uint64_t>(s)), *window);
-    if (!points.ok()) return bad(points.status());
-    sets.push_back(*std::move(points));
-  }
+  const auto make_sets = [&]() -> StatusOr<std::vector<PlanePoints>> {
+    if (bounded) {
+      return BoundedLayerSets(*world, *window, arguments.algorithms.front(), arguments.sets);
+    }
+    if (arguments.algorithms.front() != "a3") {
+      return InvalidArgument("--algorithm: a layered world is a3's; wei needs --domain");
+    }
+    StatusOr<PlaneEngineOptions> engine_options = ParseEngineOptions(arguments.world);
+    if (!engine_options.ok()) return engine_options.status();
+    PlaneEngine engine(*engine_options);
+    return WorldLayerSets(*world, *window, arguments.sets, engine);
+  };
+  StatusOr<std::vector<PlanePoints>> sets = make_sets();
+  if (!sets.ok()) return bad(sets.status());
   // As for worlds: 2.5 cycles per (smallest) d by default, at most 256 per window.
   const int max_frequency =
       arguments.max_frequency > 0
           ? arguments.max_frequency
           : std::clamp(static_cast<int>(std::ceil(2.5 * window->Width() / world->min_distance())),
                        1, kMaxPeriodogramFrequency);
-  StatusOr<LayeredAnalysis> analysis = AnalyseLayers(sets, *world, *window, max_frequency);
+  StatusOr<LayeredAnalysis> analysis = AnalyseLayers(*sets, *world, *window, max_frequency);
   if (!analysis.ok()) return bad(analysis.status());
   if (!arguments.png.empty()) {
     std::vector<Periodogram> periodograms;
@@ -377,6 +390,17 @@ int RunLayeredAnalyze(const AnalyzeArguments& arguments) {
   const auto per_d = [&](const LayerSpectrum& layer, double cycles) {
     return cycles / window->Width() * layer.spacing;
   };
+  // As Summarise's: the mean radial power below half the peak's frequency.
+  const auto low_power_of = [&](const LayerSpectrum& layer) {
+    const double half_peak = layer.radial.frequency[peak_of(layer)] / 2;
+    double sum = 0;
+    int count = 0;
+    for (size_t i = 0; i < layer.radial.frequency.size() && layer.radial.frequency[i] < half_peak;
+         ++i, ++count) {
+      sum += layer.radial.mean_power[i];
+    }
+    return count > 0 ? sum / count : NAN;
+  };
   nlohmann::json layers = nlohmann::json::array();
   for (const LayerSpectrum& layer : analysis->layers) {
     std::vector<double> frequencies;
@@ -389,6 +413,7 @@ int RunLayeredAnalyze(const AnalyzeArguments& arguments) {
          {"rho", layer.rho},
          {"peak",
           {{"frequency_per_d", frequencies[peak]}, {"power", layer.radial.mean_power[peak]}}},
+         {"low_frequency_power", low_power_of(layer)},
          {"radial", {{"frequency_per_d", frequencies}, {"power", layer.radial.mean_power}}}});
   }
   nlohmann::json cross = nlohmann::json::array();
@@ -420,7 +445,8 @@ int RunLayeredAnalyze(const AnalyzeArguments& arguments) {
               << "): " << static_cast<double>(layer.points) / arguments.sets
               << " points a set, rho " << layer.rho << ", radial power peak "
               << layer.radial.mean_power[peak] << " at "
-              << per_d(layer, layer.radial.frequency[peak]) << " / d\n";
+              << per_d(layer, layer.radial.frequency[peak]) << " / d, low-frequency power "
+              << low_power_of(layer) << "\n";
   }
   for (const CrossHistogram& histogram : analysis->cross) {
     // The first ratio bin holding a neighbour: >= 1 when the layers keep D.
@@ -526,7 +552,8 @@ CommandRunner RegisterAnalyze(CLI::App& app) {
   command
       ->add_option("--algorithm", arguments->algorithms,
                    "Comma-separated: a1, a2, a3 (worlds and samplers), dart, best-candidate, "
-                   "bridson (samplers); one series each")
+                   "bridson (samplers); one series each. Layers on a --domain: a3 (one layer "
+                   "after another) or wei (Wei's multi-class darts, aiming at a3's counts)")
       ->delimiter(',')
       ->capture_default_str();
   command->add_option("--label", arguments->labels, "Series names, one per series, in order")

@@ -29,6 +29,9 @@ class PointGrid {
     cell.index = index;
   }
 
+  // Forgets the point stored at `p` (its cell is free again). REQUIRES: p is a stored position.
+  void Remove(Vec2 p) { cells_[CellIndex(ColumnOf(p.x), RowOf(p.y))].index = -1; }
+
   // Calls visit(index, position) for every stored point that may lie within
   // `radius` of `p` (a superset: the caller measures). On a torus `position`
   // is the image of the point nearest to `p`. O((radius / cell)^2).
