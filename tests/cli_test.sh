@@ -324,6 +324,17 @@ check "analyze field --input: the planted conflict is found" grep -qF '"conflict
 expect_exit 0 analyze --radius-noise 1,4,0.02 --input "$work/noise.csv" --rect 0,0,40,40 --json
 check "analyze field --input: generate's x,y,r file has no conflict" grep -qF '"conflicts":0' "$work/out"
 expect_bad_argument "--bands" analyze --radius-noise 1,4,0.02 --domain 0,0,20,20 --bands 0
+# The field Bridson baseline on a --domain: no conflict, fewer points than the field sampler
+# (it is not maximal), and its flatter spectrum: quiet below 0.5 / R but a peak of 1.2 to 2
+# (the field sampler's passes 2); not on the plane.
+expect_exit 0 analyze --radius-noise 1,4,0.02 --domain 0,0,120,120 --sets 2 --bands 3 --json \
+  --algorithm bridson
+check "analyze field bridson: no conflict" grep -qF '"conflicts":0' "$work/out"
+check "analyze field bridson: sparser than a3" \
+  python3 -c "import json,sys; r=json.load(open('$work/out'))['all']['rho']; sys.exit(not 0.6 < r < 0.8)"
+check "analyze field bridson: Bridson's spectrum" \
+  python3 -c "import json,sys; s=json.load(open('$work/out'))['all']['spectrum']; sys.exit(not (s['low_frequency_power'] < 0.4 and 1.2 < s['peak']['power'] < 2))"
+expect_bad_argument "--algorithm" analyze --radius-noise 1,4,0.02 --rect 0,0,20,20 --algorithm bridson
 
 # Bad fields: exit 2, the option named (and the core's field where it judged).
 expect_bad_argument "--radius-noise: field.frequency" generate --radius-noise 1,4,0.5

@@ -211,10 +211,12 @@ int RunFieldAnalyze(const AnalyzeArguments& arguments, const RadiusFieldSpec& sp
     return bad(InvalidArgument("--sets: must be in 1..1000 with a radius field"));
   }
   if (arguments.torus) return bad(InvalidArgument("--torus: a radius field samples rectangles"));
-  if (Status status = CheckFieldAlgorithm(arguments.world.field, arguments.algorithms.size() == 1
-                                                                     ? arguments.algorithms[0]
-                                                                     : "several");
-      !status.ok()) {
+  const std::string algorithm =
+      arguments.algorithms.size() == 1 ? arguments.algorithms[0] : "several";
+  // The field Bridson baseline is a bounded sampler: analysed on a --domain, for comparison.
+  const bool bridson = algorithm == "bridson" && !arguments.domain.empty();
+  if (Status status = CheckFieldAlgorithm(arguments.world.field, algorithm);
+      !bridson && !status.ok()) {
     return bad(status);
   }
   StatusOr<uint64_t> seed = ParseSeed(arguments.world.seed);
@@ -244,8 +246,9 @@ int RunFieldAnalyze(const AnalyzeArguments& arguments, const RadiusFieldSpec& sp
   window = *parsed;
   if (!arguments.domain.empty()) {
     for (int s = 0; s < arguments.sets; ++s) {
+      const FieldSamplerOptions options{.domain = window, .seed = *seed + static_cast<uint64_t>(s)};
       StatusOr<std::vector<Vec2>> points =
-          SampleField({.domain = window, .seed = *seed + static_cast<uint64_t>(s)}, *field);
+          bridson ? SampleFieldBridson(options, *field) : SampleField(options, *field);
       if (!points.ok()) return bad(points.status());
       sets.push_back(std::move(*points));
     }
@@ -552,8 +555,9 @@ CommandRunner RegisterAnalyze(CLI::App& app) {
   command
       ->add_option("--algorithm", arguments->algorithms,
                    "Comma-separated: a1, a2, a3 (worlds and samplers), dart, best-candidate, "
-                   "bridson (samplers); one series each. Layers on a --domain: a3 (one layer "
-                   "after another) or wei (Wei's multi-class darts, aiming at a3's counts)")
+                   "bridson (samplers); one series each. A radius field: a3, or bridson on a "
+                   "--domain (Bridson with the field, k = 30). Layers on a --domain: a3 (one "
+                   "layer after another) or wei (Wei's multi-class darts, aiming at a3's counts)")
       ->delimiter(',')
       ->capture_default_str();
   command->add_option("--label", arguments->labels, "Series names, one per series, in order")
