@@ -139,6 +139,9 @@ TEST(MultiClassDartsTest, BadOptionsAreNamed) {
   bad.targets[1] = 0;
   EXPECT_NE(message(bad).find("targets[1]"), std::string::npos);
   bad = good;
+  bad.targets[2] = kMaxMultiClassTarget + 1;
+  EXPECT_NE(message(bad).find("targets[2]"), std::string::npos);
+  bad = good;
   bad.failure_limit = 0;
   EXPECT_NE(message(bad).find("failure_limit"), std::string::npos);
   bad = good;

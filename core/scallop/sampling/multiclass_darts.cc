@@ -20,7 +20,6 @@ class ClassSets {
   }
 
   size_t classes() const { return counts_.size(); }
-  int64_t count(size_t c) const { return counts_[c]; }
   double spacing(size_t c) const { return options_.layers.layers[c].min_distance; }
   double rule(size_t a, size_t b) const {
     return a == b ? spacing(a) : options_.layers.exclusions[a * classes() + b];
@@ -122,8 +121,10 @@ Status ValidateMultiClassDartOptions(const MultiClassDartOptions& options) {
                            "), got " + std::to_string(options.targets.size()));
   }
   for (size_t k = 0; k < n; ++k) {
-    if (options.targets[k] <= 0) {
-      return InvalidArgument("targets[" + std::to_string(k) + "]: must be > 0, got " +
+    // Bounded so that the fill comparisons' products stay within 64 bits.
+    if (options.targets[k] <= 0 || options.targets[k] > kMaxMultiClassTarget) {
+      return InvalidArgument("targets[" + std::to_string(k) + "]: must be in 1.." +
+                             std::to_string(kMaxMultiClassTarget) + ", got " +
                              std::to_string(options.targets[k]));
     }
   }

@@ -14,12 +14,14 @@
 
 namespace scallop {
 
+inline constexpr int64_t kMaxMultiClassTarget = 1'000'000'000;
+
 struct MultiClassDartOptions {
   // The domain, each layer's constant spacing d and the matrix D, as SampleLayers reads them;
   // `order` and the layers' seeds are not read (every class is filled at once).
   LayeredSamplerOptions layers;
-  // Each layer's target count N_c, each > 0. A dart is thrown for the class whose count is the
-  // smallest fraction of its target (ties: the lower number).
+  // Each layer's target count N_c, in 1..kMaxMultiClassTarget. A dart is thrown for the class whose
+  // count is the smallest fraction of its target (ties: the lower number).
   std::vector<int64_t> targets;
   // The run stops when every class has its target, after `failure_limit` rejected darts in a
   // row, or after `max_darts` darts in all (a dart that pushes points out is not rejected, so
@@ -32,7 +34,7 @@ struct MultiClassDartOptions {
 };
 
 // Checks what ValidateLayeredSamplerOptions checks, then INVALID_ARGUMENT for a field layer
-// ("layers.layers[k].field"), targets not one per layer or not positive ("targets[k]"), and a
+// ("layers.layers[k].field"), targets not one per layer or out of range ("targets[k]"), and a
 // failure_limit or max_darts that is not positive.
 Status ValidateMultiClassDartOptions(const MultiClassDartOptions& options);
 
