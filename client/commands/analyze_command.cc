@@ -1,6 +1,7 @@
 // `scallop analyze`: the periodogram, radial power, anisotropy and spacing
 // statistics of point sets (files, a bounded sampler's output or rectangles
 // of worlds), averaged over sets, as a PNG, an SVG plot and JSON or text.
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <fstream>

@@ -4,8 +4,9 @@
 // by a server), 2 on bad arguments.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <functional>
+
+#include "client/options/cli_fwd.h"
 
 namespace scallop::cli {
 

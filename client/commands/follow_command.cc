@@ -2,6 +2,7 @@
 // through scallopd's Follow. Every point received goes to stdout as the
 // `id,x,y` CSV of `scallop plane`; points, bytes, messages, evictions and the
 // time from sending a step to its last message go to stderr, one line a step.
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <fstream>
 #include <iomanip>

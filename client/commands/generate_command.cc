@@ -3,6 +3,7 @@
 // --radius-raster) the sampler is the field sampler (SampleField), and each point carries R.
 // With layers (--layer, --exclusion) every layer is sampled on the domain (SampleLayers), and
 // each point carries its layer. --world-file samples a YAML world's spec the same way.
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <iomanip>
 #include <iostream>

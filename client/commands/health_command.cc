@@ -2,6 +2,7 @@
 // code for probes (Docker HEALTHCHECK, Kubernetes exec probes, scripts):
 // 0 when SERVING, 1 when NOT_SERVING or unreachable within the timeout, 2 when
 // a --tls-* or token file cannot be read.
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
 

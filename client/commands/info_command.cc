@@ -1,6 +1,7 @@
 // `scallop info`: what a scallopd serves: its version, limits, worlds, health,
 // and one world described (--world NAME, the inline world options, or the
 // server's default when neither is given).
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>

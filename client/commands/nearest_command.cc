@@ -2,6 +2,7 @@
 // the nearest point) at positions read as `x,y` lines, computed locally by a
 // NearestLookup or, with --server, by scallopd's Nearest in batches of at
 // most the server's max_nearest_batch. Both print the same CSV, bit for bit.
+#include <CLI/CLI.hpp>
 #include <charconv>
 #include <fstream>
 #include <iomanip>

@@ -1,6 +1,7 @@
 // `scallop noise`: one channel of the cellular-noise basis sampled at the
 // pixel centres of --size over --rect, rendered as a PNG (north up),
 // computed locally or, with --server, by scallopd's NoiseGrid.
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <iostream>

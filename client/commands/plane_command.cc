@@ -1,5 +1,6 @@
 // `scallop plane`: prints one rectangle of an infinite world, each point with
 // its id, computed locally by a PlaneEngine.
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
 

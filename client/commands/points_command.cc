@@ -1,5 +1,6 @@
 // `scallop points`: a rectangle of a world from scallopd's GetPoints, page by
 // page, printed as `scallop plane` prints it.
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
 

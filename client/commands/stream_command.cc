@@ -1,6 +1,7 @@
 // `scallop stream`: a rectangle of a world from scallopd's StreamPoints. CSV is
 // written chunk by chunk as it arrives, so memory stays bounded; JSON and SVG
 // are whole documents and are written at the end.
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
 

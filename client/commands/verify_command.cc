@@ -1,6 +1,7 @@
 // `scallop verify`: checks the contract (spacing and maximality) on one
 // rectangle of a world, locally or with --server through scallopd's Verify,
 // and reports what it measured, as text or JSON (the same for both paths).
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <iomanip>
 #include <iostream>

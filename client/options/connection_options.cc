@@ -1,6 +1,7 @@
 // Registration of the connection options, and reading the files they name.
 #include "client/options/connection_options.h"
 
+#include <CLI/CLI.hpp>
 #include <fstream>
 #include <sstream>
 

@@ -3,9 +3,9 @@
 // read and checked into the client library's ConnectionOptions.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <string>
 
+#include "client/options/cli_fwd.h"
 #include "scallop/base/status.h"
 #include "scallop_client.h"
 

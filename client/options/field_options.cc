@@ -2,6 +2,7 @@
 // a RadiusField message (remote).
 #include "client/options/field_options.h"
 
+#include <CLI/CLI.hpp>
 #include <memory>
 #include <string_view>
 #include <utility>

@@ -5,10 +5,10 @@
 // (a raster the server loaded, by name).
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
 
+#include "client/options/cli_fwd.h"
 #include "scallop/base/status.h"
 #include "scallop/field/radius_field.h"
 #include "scallop/v1/scallop.pb.h"

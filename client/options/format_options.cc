@@ -1,6 +1,7 @@
 // --format and --seams registration.
 #include "client/options/format_options.h"
 
+#include <CLI/CLI.hpp>
 #include <map>
 #include <string>
 

@@ -2,8 +2,7 @@
 // registered in one place so they read and behave the same everywhere.
 #pragma once
 
-#include <CLI/CLI.hpp>
-
+#include "client/options/cli_fwd.h"
 #include "client/output/point_output.h"
 
 namespace scallop::cli {

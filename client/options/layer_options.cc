@@ -2,6 +2,7 @@
 // layer filter.
 #include "client/options/layer_options.h"
 
+#include <CLI/CLI.hpp>
 #include <sstream>
 
 #include "client/options/field_options.h"

@@ -4,10 +4,10 @@
 // --layers NAME[,NAME], which layers to print. Shared by every command that takes a world.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
+#include "client/options/cli_fwd.h"
 #include "scallop/base/status.h"
 #include "scallop/plane/layer_spec.h"
 #include "scallop/plane/plane_engine.h"

@@ -1,6 +1,7 @@
 // Registration of the remote options and the call options they give.
 #include "client/options/remote_options.h"
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <map>
 #include <string>

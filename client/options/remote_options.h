@@ -2,9 +2,9 @@
 // --timeout), and the request fields they and the world options fill in.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <string>
 
+#include "client/options/cli_fwd.h"
 #include "client/options/connection_options.h"
 #include "client/options/rect_option.h"
 #include "client/options/world_options.h"

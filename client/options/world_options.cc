@@ -2,6 +2,7 @@
 // seed and engine.
 #include "client/options/world_options.h"
 
+#include <CLI/CLI.hpp>
 #include <charconv>
 #include <filesystem>
 

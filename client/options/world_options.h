@@ -3,11 +3,11 @@
 // shared by every command that queries the plane, locally or through a server.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "client/options/cli_fwd.h"
 #include "client/options/field_options.h"
 #include "client/options/layer_options.h"
 #include "scallop/base/status.h"
