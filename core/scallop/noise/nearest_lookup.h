@@ -28,7 +28,7 @@ enum class NearestMethod {
 };
 
 struct NearestLookupOptions {
-  // Budget of the search-grid cache (about 16 KB a region: 64 MB holds 4,000;
+  // Budget of the search-grid cache (about 19 KB a region: 64 MB holds 3,300;
   // a field world's grid holds its region and margin, about 24 bytes a point).
   int64_t cache_bytes = int64_t{64} << 20;
   NearestMethod method = NearestMethod::kGrid;
