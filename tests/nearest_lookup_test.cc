@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -287,6 +289,57 @@ TEST(NearestLookupTest, RejectsBadPositionsNamingThem) {
 
   std::vector<NearestPoint> too_few(2);
   EXPECT_EQ(lookup.Nearest(world, on_limit, too_few).code(), StatusCode::kInvalidArgument);
+}
+
+// Large batches find regions met before through the window without testing
+// the range: only regions with a region of the range on every side enter it.
+// So a bad position after many good ones about a corner of the range, in
+// its edge regions and those next to them, must still be caught and named,
+// with nothing written. At d = 0.73, -limit less an ulp rounds into the
+// lowest region of the range ((p * (1/S)) is exactly -n): a window that
+// admitted edge regions answered it (the planted fault this catches).
+TEST(NearestLookupTest, LargeBatchesRejectBadPositionsNearTheLimit) {
+  PlaneEngine engine({.threads = 1});
+  NearestLookup lookup(engine);
+  for (double d : {1.0, 0.73}) {
+    SCOPED_TRACE(::testing::Message() << "d = " << d);
+    const World world = WorldFor(WorldAlgorithm::kA3, 5, d);
+    const double limit = RegionLayout(d).precision_limit();
+    Rng rng(HashWords({5, 77}));
+    std::vector<Vec2> positions;  // within 40 d of the corner (limit, -limit)
+    for (int k = 0; k < 1500; ++k) {
+      positions.push_back({limit - rng.Uniform(0, 40 * d), -limit + rng.Uniform(0, 40 * d)});
+    }
+    EXPECT_EQ(CountMismatches(engine, lookup, world, positions), 0);
+    const size_t bad = 1200;  // after every region about the corner has been met
+    const double beyond = std::nextafter(limit, 1e300);
+    struct BadPosition {
+      Vec2 position;
+      StatusCode code;
+      std::string field;
+    };
+    const BadPosition cases[] = {
+        {{beyond, -limit + 20 * d}, StatusCode::kOutOfRange, ".x"},
+        {{limit - 20 * d, -beyond}, StatusCode::kOutOfRange, ".y"},
+        {{beyond, -beyond}, StatusCode::kOutOfRange, ".x"},
+        {{std::nan(""), -limit + 20 * d}, StatusCode::kInvalidArgument, ".x"},
+        {{limit - 20 * d, -std::numeric_limits<double>::infinity()},
+         StatusCode::kInvalidArgument,
+         ".y"}};
+    for (const BadPosition& c : cases) {
+      std::vector<Vec2> batch = positions;
+      batch[bad] = c.position;
+      NearestPoint untouched;
+      untouched.id = 12345;
+      std::vector<NearestPoint> results(batch.size(), untouched);
+      const Status status = lookup.Nearest(world, batch, results);
+      EXPECT_EQ(status.code(), c.code) << status.message();
+      const std::string field = "positions[" + std::to_string(bad) + "]" + c.field;
+      EXPECT_NE(status.message().find(field), std::string::npos) << status.message();
+      EXPECT_TRUE(std::all_of(results.begin(), results.end(),
+                              [](const NearestPoint& r) { return r.id == 12345; }));
+    }
+  }
 }
 
 // The comparison above must notice a wrong answer: planted faults in one

@@ -28,7 +28,7 @@ enum class NearestMethod {
 };
 
 struct NearestLookupOptions {
-  // Budget of the search-grid cache (about 16 KB a region: 64 MB holds 4,000;
+  // Budget of the search-grid cache (about 19 KB a region: 64 MB holds 3,300;
   // a field world's grid holds its region and margin, about 24 bytes a point).
   int64_t cache_bytes = int64_t{64} << 20;
   NearestMethod method = NearestMethod::kGrid;
@@ -62,8 +62,8 @@ class NearestLookup {
   // Rejects: INVALID_ARGUMENT for a
   // non-finite coordinate; OUT_OF_RANGE for |x| or |y| > 2^32 d; errors name
   // the position, e.g. "positions[3].x".
-  // Cost, warm: 32 to 53 ns of CPU a position on this project's shared
-  // Intel Xeon at load 4 to 7 (19.0 to 31.3M/s at random positions,
+  // Cost, warm: 29 to 43 ns of CPU a position on this project's shared
+  // Intel Xeon at load 2 to 5 (23.3 to 34.0M/s at random positions,
   // docs/performance.md; Zen 3 unmeasured since it was slower, docs/noise.md), plus a
   // mutex and a hash lookup per region a batch visits. A missing grid costs
   // one PlaneEngine::Points query of 24 d x 24 d, plus generation when cold.

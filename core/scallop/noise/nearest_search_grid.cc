@@ -62,7 +62,7 @@ template <>
 struct LaneTypes<4> {
   using Keys = double __attribute__((vector_size(32)));
   using Bits = uint64_t __attribute__((vector_size(32)));
-  static constexpr Bits kIndex = {0, 1, 2, 3};
+  static constexpr Bits kIndex = {0, 2, 1, 3};  // KeysOf's lane order
 };
 
 // The paired pass (FindPairsQuickly) ranks floats: squared distances in cell
@@ -114,21 +114,33 @@ SCALLOP_INLINE typename LaneTypes<kLanes>::Keys Broadcast(double value) {
 
 // The keys of points first .. first + kLanes - 1 about (px, py): the bits of
 // the squared distance, its low kIndexBits replaced by the point's index.
+// The lanes need not hold the points in order (the index rides along): four
+// lanes hold first, first + 2, first + 1, first + 3, which two in-lane
+// unpacks of the records' coordinate pairs give.
 // A function, not a lambda in its caller: a lambda is not always_inline, and
 // at -O0 GCC called it as a function compiled without AVX from the AVX2
 // entry point, whose four-lane return then crossed two ABIs (the caller
 // expected it in a register, the callee wrote through a hidden pointer
 // taken from the register that held the closure): a crash.
 template <int kLanes>
-SCALLOP_INLINE typename LaneTypes<kLanes>::Keys KeysOf(const double* xs, const double* ys,
+SCALLOP_INLINE typename LaneTypes<kLanes>::Keys KeysOf(const SearchGridPoint* points,
                                                        typename LaneTypes<kLanes>::Keys px,
                                                        typename LaneTypes<kLanes>::Keys py,
                                                        uint32_t first) {
   using Keys = typename LaneTypes<kLanes>::Keys;
   using Bits = typename LaneTypes<kLanes>::Bits;
   Keys x, y;
-  std::memcpy(&x, xs + first, sizeof(x));
-  std::memcpy(&y, ys + first, sizeof(y));
+  const Pair a = LoadPair(points[first].position), b = LoadPair(points[first + 1].position);
+  if constexpr (kLanes == 2) {
+    x = __builtin_shufflevector(a, b, 0, 2);
+    y = __builtin_shufflevector(a, b, 1, 3);
+  } else {
+    const Pair c = LoadPair(points[first + 2].position), d = LoadPair(points[first + 3].position);
+    const Keys ab = __builtin_shufflevector(a, b, 0, 1, 2, 3);
+    const Keys cd = __builtin_shufflevector(c, d, 0, 1, 2, 3);
+    x = __builtin_shufflevector(ab, cd, 0, 4, 2, 6);
+    y = __builtin_shufflevector(ab, cd, 1, 5, 3, 7);
+  }
   const Keys dx = px - x, dy = py - y;  // SquaredDistanceFrom's order
   const auto bits = reinterpret_cast<Bits>(dx * dx + dy * dy);
   return reinterpret_cast<Keys>((bits & ~kIndexMask) | (first + LaneTypes<kLanes>::kIndex));
@@ -289,7 +301,7 @@ bool CpuHasAvx2() {
 
 // Lines of the next grid prefetched for each pair of positions answered:
 // 1.5 a position, so that a group of a few hundred positions (256 in a warm
-// 256 d square) covers the next grid's 16 KB before it is needed.
+// 256 d square) covers the next grid's 19 KB before it is needed.
 constexpr int kPrefetchLinesPerPair = 3;
 constexpr uintptr_t kLineBytes = 64;
 
@@ -302,8 +314,7 @@ class NearestSearchGrid::LinePrefetcher {
   explicit LinePrefetcher(const NearestSearchGrid* grid) {
     if (grid == nullptr) return;
     arrays_ = {Bytes(grid->cell_start_), Bytes(grid->long_block_), Bytes(grid->cell_xs_),
-               Bytes(grid->cell_ys_),    Bytes(grid->xs_),         Bytes(grid->ys_),
-               Bytes(grid->ids_)};
+               Bytes(grid->cell_ys_), Bytes(grid->points_)};
     array_ = 0;
     line_ = LineOf(arrays_[0].begin);
   }
@@ -320,7 +331,7 @@ class NearestSearchGrid::LinePrefetcher {
   struct ByteRange {
     uintptr_t begin = 0, end = 0;
   };
-  static constexpr int kArrays = 7;
+  static constexpr int kArrays = 5;
   template <typename T>
   static ByteRange Bytes(const std::vector<T>& array) {
     const auto begin = reinterpret_cast<uintptr_t>(array.data());
@@ -363,20 +374,17 @@ NearestSearchGrid::NearestSearchGrid(double min_distance, RegionKey key,
   cell_start_.resize(kSide * kSide + 1);
   for (int c = 0; c < kSide * kSide; ++c) counts[c + 1] += counts[c];
   std::copy(counts.begin(), counts.end(), cell_start_.begin());
-  xs_.resize(cell_start_.back() + kRunPad, kPadCoordinate);
-  ys_.resize(cell_start_.back() + kRunPad, kPadCoordinate);
-  ids_.resize(cell_start_.back() + kRunPad, 0);
+  points_.resize(cell_start_.back() + kRunPad,
+                 {.position = {kPadCoordinate, kPadCoordinate}, .id = 0, .cell_value = 0});
   cell_xs_.resize(cell_start_.back() + kRunPad, kPadCell);
   cell_ys_.resize(cell_start_.back() + kRunPad, kPadCell);
-  quick_ = ids_.size() <= kIndexMask + 1;
-  paired_ = ids_.size() <= kPairIndexMask + 1;
+  quick_ = points_.size() <= kIndexMask + 1;
+  paired_ = points_.size() <= kPairIndexMask + 1;
   // Stable within a cell (input order), so a grid is a pure function of its input.
   for (size_t k = 0; k < points.size(); ++k) {
     if (cell_of[k] < 0) continue;
     const uint32_t slot = counts[cell_of[k]]++;
-    xs_[slot] = points[k].x;
-    ys_[slot] = points[k].y;
-    ids_[slot] = ids[k];
+    points_[slot] = {.position = points[k], .id = ids[k], .cell_value = CellValue(ids[k])};
     // CellCoordinates' g, in [0, kSide) here, rounded to float.
     cell_xs_[slot] = static_cast<float>((points[k].x - origin_.x) * inverse_cell_);
     cell_ys_[slot] = static_cast<float>((points[k].y - origin_.y) * inverse_cell_);
@@ -394,17 +402,16 @@ NearestSearchGrid::NearestSearchGrid(double min_distance, RegionKey key,
 
 size_t NearestSearchGrid::Bytes() const {
   return sizeof(*this) + cell_start_.capacity() * sizeof(uint32_t) + long_block_.capacity() +
-         (xs_.capacity() + ys_.capacity()) * sizeof(double) +
-         (cell_xs_.capacity() + cell_ys_.capacity()) * sizeof(float) +
-         ids_.capacity() * sizeof(uint64_t);
+         points_.capacity() * sizeof(SearchGridPoint) +
+         (cell_xs_.capacity() + cell_ys_.capacity()) * sizeof(float);
 }
 
 void NearestSearchGrid::ScanRow(int row, int first, int last, const Vec2& p,
                                 TwoNearest& best) const {
   const uint32_t end = cell_start_[row * kSide + last + 1];
   for (uint32_t k = cell_start_[row * kSide + first]; k < end; ++k) {
-    const Vec2 q = Point(k);
-    OfferCandidate(SquaredDistanceFrom(p, q), ids_[k], q, best);
+    const SearchGridPoint& q = points_[k];
+    OfferCandidate(SquaredDistanceFrom(p, q.position), q.id, q.position, best);
   }
 }
 
@@ -412,29 +419,37 @@ SCALLOP_INLINE bool NearestSearchGrid::TakeFound(const BlockQuery& query, uint32
                                                  uint32_t i2) const {
   const Vec2& p = *query.p;
   TwoNearest& best = *query.best;
-  best.squared1 = SquaredDistanceFrom(p, Point(i1));
-  best.squared2 = SquaredDistanceFrom(p, Point(i2));
-  best.id1 = ids_[i1];
-  best.id2 = ids_[i2];
+  const SearchGridPoint& found1 = points_[i1];
+  const SearchGridPoint& found2 = points_[i2];
+  best.squared1 = SquaredDistanceFrom(p, found1.position);
+  best.squared2 = SquaredDistanceFrom(p, found2.position);
+  best.id1 = found1.id;
+  best.id2 = found2.id;
+  *query.cell_value1 = found1.cell_value;
   // Each point as one 16-byte store: the caller reads it so, and one built
   // from two 8-byte stores would stall that read (no store forwarding).
-  const Pair point1 = {xs_[i1], ys_[i1]}, point2 = {xs_[i2], ys_[i2]};
-  best.point1 = std::bit_cast<Vec2>(point1);
-  best.point2 = std::bit_cast<Vec2>(point2);
+  best.point1 = found1.position;
+  best.point2 = found2.position;
   // Else phase 2 is needed (or a pad is among the two).
   return best.squared2 <= query.radius1 * query.radius1;
 }
 
 template <int kLanes>
-SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const BlockQuery& query) const {
+SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy,
+                                                          double radius1, TwoNearest& best) const {
   using Keys = typename LaneTypes<kLanes>::Keys;
   static_assert(kRunPoints % kLanes == 0);
+  double cell_value1;  // unused: FindTwoNearest answers without it
+  const BlockQuery query{.p = &p,
+                         .best = &best,
+                         .cell_value1 = &cell_value1,
+                         .cell = cy * kSide + cx,
+                         .radius1 = radius1};
   // Examines every point of the position's 3x3 block, and some beyond it
   // (later cells of a row, the far pads, possibly a point twice): extra
   // points are real, or farther than any block reaches, so they cannot make
   // a wrong answer look right.
-  const double* const xs = xs_.data();
-  const double* const ys = ys_.data();
+  const SearchGridPoint* const points = points_.data();
   const Keys px = Broadcast<kLanes>(query.p->x), py = Broadcast<kLanes>(query.p->y);
   // Row r of the block starts at runs[r * kSide] and ends at runs[r * kSide + 3].
   const uint32_t* const runs = cell_start_.data() + query.cell - kSide - 1;
@@ -446,7 +461,7 @@ SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const BlockQuery& quer
   Keys fixed[kVectors];
   for (int v = 0; v < kVectors; ++v) {
     fixed[v] =
-        KeysOf<kLanes>(xs, ys, px, py, first[v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
+        KeysOf<kLanes>(points, px, py, first[v * kLanes / kRunPoints] + v * kLanes % kRunPoints);
   }
   keys.Start(fixed[0], fixed[1], fixed[2]);
   for (int v = 3; v < kVectors; ++v) keys.Offer(fixed[v]);
@@ -454,7 +469,7 @@ SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const BlockQuery& quer
   if (long_block_[query.cell] != 0) [[unlikely]] {
     for (int r = 0; r < 3; ++r) {
       for (uint32_t k = first[r] + kRunPoints; k < runs[r * kSide + 3]; k += kLanes)
-        keys.Offer(KeysOf<kLanes>(xs, ys, px, py, k));
+        keys.Offer(KeysOf<kLanes>(points, px, py, k));
     }
   }
   keys.template MergeGroupsOf<kLanes>();
@@ -555,8 +570,7 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindPairsQuickly(const BlockQuery* qu
 
 bool NearestSearchGrid::FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1,
                                               TwoNearest& best) const {
-  const BlockQuery query{.p = &p, .best = &best, .cell = cy * kSide + cx, .radius1 = radius1};
-  return FindInBlockQuickly<2>(query);
+  return FindInBlockQuickly<2>(p, cx, cy, radius1, best);
 }
 
 template <typename CellFloats>
@@ -592,26 +606,26 @@ SCALLOP_INLINE bool NearestSearchGrid::LocatePair(BlockQuery* queries, CellFloat
 
 namespace {
 // The basis from a certified quick pass, its square roots in one instruction.
-SCALLOP_INLINE void StoreBasis(const TwoNearest& best, NearestPoint& out) {
+SCALLOP_INLINE void StoreBasis(const TwoNearest& best, double cell_value, NearestPoint& out) {
   const Pair f = SquareRoots(Pair{best.squared1, best.squared2});
   out = {.id = best.id1,
          .position = best.point1,
          .f1 = f[0],
          .f2 = f[1],
          .second_id = best.id2,
-         .cell_value = CellValue(best.id1)};
+         .cell_value = cell_value};
 }
 }  // namespace
 
 template <int kLanes>
 SCALLOP_INLINE void NearestSearchGrid::Finish(std::span<const IndexedPosition> positions,
                                               uint32_t k, const TwoNearest* best,
-                                              unsigned certified, uint32_t entries,
-                                              NearestPoint* results,
+                                              const double* cell_values, unsigned certified,
+                                              uint32_t entries, NearestPoint* results,
                                               std::vector<uint32_t>& refused) const {
   for (uint32_t q = 0; q < entries; ++q) {
     if (certified & (1u << q)) {
-      StoreBasis(best[q], results[positions[k + q].index]);
+      StoreBasis(best[q], cell_values[q], results[positions[k + q].index]);
     } else {
       AnswerExactly(positions[k + q], k + q, results, refused);
     }
@@ -623,8 +637,10 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerPair(std::span<const IndexedPositio
                                                   uint32_t k, NearestPoint* results,
                                                   std::vector<uint32_t>& refused) const {
   TwoNearest best[2];
-  BlockQuery queries[2] = {{.p = &positions[k].position, .best = &best[0]},
-                           {.p = &positions[k + 1].position, .best = &best[1]}};
+  double cell_values[2];
+  BlockQuery queries[2] = {
+      {.p = &positions[k].position, .best = &best[0], .cell_value1 = &cell_values[0]},
+      {.p = &positions[k + 1].position, .best = &best[1], .cell_value1 = &cell_values[1]}};
   Floats4 g = {};
   const unsigned certified = paired_ && LocatePair(queries, g)
                                  ? FindPairsQuickly<2 * kLanes, 1>(queries, &g)
@@ -634,7 +650,7 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerPair(std::span<const IndexedPositio
     AnswerAlone(positions[k + 1], k + 1, results, refused);
     return;
   }
-  Finish<kLanes>(positions, k, best, certified, 2, results, refused);
+  Finish<kLanes>(positions, k, best, cell_values, certified, 2, results, refused);
 }
 
 template <int kLanes>
@@ -653,8 +669,12 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosit
   for (; kTwoPairs && k + 4 <= count; k += 4) {
     prefetcher.Step(2 * kPrefetchLinesPerPair);
     TwoNearest best[4];
+    double cell_values[4];
     BlockQuery queries[4];
-    for (int q = 0; q < 4; ++q) queries[q] = {.p = &positions[k + q].position, .best = &best[q]};
+    for (int q = 0; q < 4; ++q) {
+      queries[q] = {
+          .p = &positions[k + q].position, .best = &best[q], .cell_value1 = &cell_values[q]};
+    }
     Floats4 g[2] = {};
     // Both pairs located whatever the first's verdict (each fills its queries).
     const bool first_located = LocatePair(queries, g[0]);
@@ -668,7 +688,7 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosit
       AnswerPair<kLanes>(positions, k + 2, results, refused);
       continue;
     }
-    Finish<kLanes>(positions, k, best, certified, 4, results, refused);
+    Finish<kLanes>(positions, k, best, cell_values, certified, 4, results, refused);
   }
   for (; k + 2 <= count; k += 2) {
     prefetcher.Step(kPrefetchLinesPerPair);
@@ -717,8 +737,7 @@ void NearestSearchGrid::AnswerEachInTwoLanes(std::span<const IndexedPosition> po
 #if defined(__x86_64__) || defined(__i386__)
 __attribute__((target("avx2"))) bool NearestSearchGrid::FindInBlockInFourLanes(
     const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const {
-  const BlockQuery query{.p = &p, .best = &best, .cell = cy * kSide + cx, .radius1 = radius1};
-  return FindInBlockQuickly<4>(query);
+  return FindInBlockQuickly<4>(p, cx, cy, radius1, best);
 }
 
 __attribute__((target("avx2"))) void NearestSearchGrid::AnswerEachInFourLanes(

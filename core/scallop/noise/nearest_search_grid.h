@@ -70,6 +70,16 @@ inline void OfferCandidate(double squared, uint64_t id, Vec2 q, TwoNearest& best
   }
 }
 
+// A point of a search grid with what an answer copies from it, in one
+// record: the two points a quick pass finds are then two lines at most (the
+// coordinates and ids in arrays of their own were up to six). The cell value
+// is stored: hashing the id for every answer cost about 5% of a lookup.
+struct alignas(32) SearchGridPoint {
+  Vec2 position;
+  uint64_t id = 0;
+  double cell_value = 0;  // CellValue(id)
+};
+
 class NearestSearchGrid {
  public:
   // The vector width of the search's first pass. Both widths give the same
@@ -92,7 +102,7 @@ class NearestSearchGrid {
   // `points` must hold every point of the world in CoveredSquare grown by
   // 1 d (so rounding at the edges cannot lose one). REQUIRES: min_distance
   // valid (world.h), ids.size() == points.size(), ids distinct.
-  // Cost: O(points); about 16 KB for an A3 region.
+  // Cost: O(points); about 19 KB for an A3 region.
   NearestSearchGrid(double min_distance, RegionKey key, std::span<const Vec2> points,
                     std::span<const uint64_t> ids, FirstPassWidth width = FirstPassWidth::kWidest);
 
@@ -126,7 +136,7 @@ class NearestSearchGrid {
   // compares (docs/noise.md, "The paired pass", "Answering a batch").
   // `next`, if not null, is the grid the caller answers from next: its
   // lines are prefetched into L2 a few at a time meanwhile, since a batch's
-  // grids (16 KB each, a few hundred) do not stay in L2 from one batch to
+  // grids (19 KB each, a few hundred) do not stay in L2 from one batch to
   // the next. A hint: the answers do not depend on it.
   // REQUIRES: every entry's index < results.size().
   void AnswerEach(std::span<const IndexedPosition> positions, std::span<NearestPoint> results,
@@ -150,6 +160,7 @@ class NearestSearchGrid {
   struct BlockQuery {
     const Vec2* p;
     TwoNearest* best;
+    double* cell_value1;  // CellValue(best->id1), from the grid's table
     int cell = 0;
     double radius1 = 0;
   };
@@ -165,7 +176,7 @@ class NearestSearchGrid {
   // caller to the exact scan. Inlined into the entry points below (the
   // four-lane ones compiled for AVX2).
   template <int kLanes>
-  bool FindInBlockQuickly(const BlockQuery& query) const;
+  bool FindInBlockQuickly(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
   // A quick pass's two found, points i1 and i2 (in bounds: points or pads),
   // into *query.best with their exact squared distances; whether the second
   // lies within the radius the block covers.
@@ -190,8 +201,8 @@ class NearestSearchGrid {
   // (bit q for entry k + q) and `best`, or by the exact phases.
   template <int kLanes>
   void Finish(std::span<const IndexedPosition> positions, uint32_t k, const TwoNearest* best,
-              unsigned certified, uint32_t entries, NearestPoint* results,
-              std::vector<uint32_t>& refused) const;
+              const double* cell_values, unsigned certified, uint32_t entries,
+              NearestPoint* results, std::vector<uint32_t>& refused) const;
   // AnswerEach with kLanes lanes, inlined into the two entry points below.
   template <int kLanes>
   void AnswerEachIn(std::span<const IndexedPosition> positions, NearestPoint* results,
@@ -218,19 +229,15 @@ class NearestSearchGrid {
   }
 
   RegionKey key_;
-  double cell_ = 0;          // cell side, d
-  double inverse_cell_ = 0;  // 1 / d, rounded
-  double slack_ = 0;         // bound on rounding in cell coordinates, in world units
-  Vec2 origin_;              // low corner of cell (0, 0)
-  Vec2 Point(uint32_t k) const { return {xs_[k], ys_[k]}; }
-
+  double cell_ = 0;                   // cell side, d
+  double inverse_cell_ = 0;           // 1 / d, rounded
+  double slack_ = 0;                  // bound on rounding in cell coordinates, in world units
+  Vec2 origin_;                       // low corner of cell (0, 0)
   std::vector<uint32_t> cell_start_;  // kCellsPerSide^2 + 1 offsets into the points (row-major)
-  // The points' coordinates, apart so that four load at once: bucketed by
-  // cell, then a few far pads (.cc).
-  std::vector<double> xs_, ys_;
+  // The points, bucketed by cell, then a few far pads (.cc).
+  std::vector<SearchGridPoint> points_;
   // The same points in cell units as floats (pads far), for FindPairsQuickly.
   std::vector<float> cell_xs_, cell_ys_;
-  std::vector<uint64_t> ids_;  // ids_[k] is the id of point k
   // Per cell, 1 when a row of its 3x3 block holds more points than the
   // quick pass reads (1% of rows): one load a position instead of three ends.
   std::vector<uint8_t> long_block_;
