@@ -11,6 +11,7 @@
 #include <future>
 #include <latch>
 #include <map>
+#include <optional>
 
 #include "scallop/plane/point_id.h"
 #include "scallop/plane/query_rect.h"
@@ -93,16 +94,17 @@ std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
   // A later layer's regions keep clear of the earlier layers' points: those
   // layers' regions are resolved first, here on the calling thread, so the
   // pool never waits on itself and dependencies run down (layer, rank).
-  std::map<RegionKey, std::vector<ExclusionDisk>> exclusions;
+  // Each region's disks are listed from them as it is generated.
+  std::optional<RegionExclusions> exclusions;
   if (world.earlier_layers() != nullptr && !lookups.empty()) {
     std::vector<RegionKey> keys;
     for (const auto& [key, pending] : lookups) {
       if (!pending.valid()) keys.push_back(key);
     }
-    exclusions = RegionExclusions(
-        world, keys, [this](const World& layer, const std::vector<RegionKey>& layer_keys) {
-          return Resolve(layer, layer_keys);
-        });
+    exclusions.emplace(world, keys,
+                       [this](const World& layer, const std::vector<RegionKey>& layer_keys) {
+                         return Resolve(layer, layer_keys);
+                       });
   }
 
   // The dependency graph: a region of ours waits for its lower-ranked
@@ -163,13 +165,12 @@ std::vector<RegionHandle> PlaneEngine::Resolve(const World& world,
       neighbours[neighbour_count++] =
           it != ready.end() ? it->second.get() : plan[planned.at(dependency)].region.get();
     }
-    const auto disks = exclusions.find(key);
     std::unique_ptr<RegionScratch> scratch = scratch_.Take();
+    std::span<const ExclusionDisk> disks;
+    if (exclusions) disks = exclusions->DisksFor(key, scratch->exclusions);
     if (options_.observer != nullptr) options_.observer->Started(world, key);
-    auto region = std::make_shared<const RegionPoints>(
-        GenerateRegion(world, key, std::span(neighbours.data(), neighbour_count),
-                       disks == exclusions.end() ? std::span<const ExclusionDisk>{} : disks->second,
-                       scratch.get()));
+    auto region = std::make_shared<const RegionPoints>(GenerateRegion(
+        world, key, std::span(neighbours.data(), neighbour_count), disks, scratch.get()));
     if (options_.observer != nullptr) options_.observer->Finished(world, key);
     scratch_.Return(std::move(scratch));
     cache_.Publish(world, key, region);

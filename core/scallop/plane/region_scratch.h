@@ -7,6 +7,7 @@
 
 #include "scallop/plane/neighbour_points.h"
 #include "scallop/sampling/boundary_scratch.h"
+#include "scallop/sampling/sampling_problem.h"
 
 namespace scallop {
 
@@ -17,6 +18,9 @@ struct RegionScratch {
   NeighbourPoints gathered;
   BoundaryScratch boundary;              // A3's run
   std::vector<bool> placed_unprocessed;  // the run's flags (A3 and fields)
+  // A later layer's region: room for its exclusion disks, listed by the engine
+  // (RegionExclusions::DisksFor).
+  std::vector<ExclusionDisk> exclusions;
 };
 
 }  // namespace scallop

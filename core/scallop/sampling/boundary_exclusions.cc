@@ -24,10 +24,16 @@ const DiskBins* TableFor(double disk, double disk_cut, double circle, double cir
 
 }  // namespace
 
-BoundaryExclusions::BoundaryExclusions(std::span<const ExclusionDisk> disks, double min_distance,
-                                       double spacing, double max_abs_coordinate)
-    : spacing_(spacing) {
-  std::vector<Disk> given;
+void BoundaryExclusions::Reset(std::span<const ExclusionDisk> disks, double min_distance,
+                               double spacing, double max_abs_coordinate) {
+  spacing_ = spacing;
+  radii_.clear();
+  largest_cut_ = 0.0;
+  from_point_.clear();
+  disks_.clear();
+  StartSearch(0.0);
+  std::vector<Disk>& given = given_;
+  given.clear();
   given.reserve(disks.size());
   for (const ExclusionDisk& disk : disks) {
     if (!(disk.radius > 0.0)) continue;
@@ -82,10 +88,11 @@ BoundaryExclusions::BoundaryExclusions(std::span<const ExclusionDisk> disks, dou
   for (const Disk& disk : given) ++cell_start_[cell_of(disk.centre) + 1];
   for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
   disks_.resize(given.size());
-  std::vector<uint32_t> filled(cell_start_.begin(), cell_start_.end() - 1);
+  std::vector<uint32_t>& filled = cell_filled_;
+  filled.assign(cell_start_.begin(), cell_start_.end() - 1);
   for (const Disk& disk : given) disks_[filled[cell_of(disk.centre)]++] = disk;
   arcs_.reserve(disks_.size());
-  near_.resize(disks_.size());
+  if (near_.size() < disks_.size() + 1) near_.resize(disks_.size() + 1);
 }
 
 bool BoundaryExclusions::AddExactArc(Vec2 offset, double disk_radius) {
@@ -121,10 +128,22 @@ bool BoundaryExclusions::AddDisksNear(const Vec2& centre, const DiskBins* const*
   const int64_t r0 = index(centre.y - reach - origin_.y, rows_);
   const int64_t r1 = index(centre.y + reach - origin_.y, rows_);
   // The disks near, filed without a branch each (whether one is near cannot be predicted)...
+  const auto top = static_cast<uint32_t>(disks_.size() - 1);
   for (int64_t row = r0; row <= r1; ++row) {
     const uint32_t first = cell_start_[static_cast<size_t>(row * columns_ + c0)];
     const uint32_t last = cell_start_[static_cast<size_t>(row * columns_ + c1) + 1];
-    for (uint32_t k = first; k < last; ++k) {
+    // ... the first two in the row's cells without a branch on how many there are (in a
+    // forest's 250k query a search reads 3.8 disks in 5.1 rows, so a loop's end was a coin
+    // toss in every row)...
+    for (uint32_t k = first; k < first + 2; ++k) {
+      const Disk& disk = disks_[std::min(k, top)];
+      const double meets = circle + disk.cut;
+      near_[near_count_] = k;
+      near_count_ += static_cast<size_t>(k < last) &
+                     static_cast<size_t>(SquaredLength(disk.centre - centre) < meets * meets);
+    }
+    // ... and any more.
+    for (uint32_t k = first + 2; k < last; ++k) {
       const Disk& disk = disks_[k];
       const double meets = circle + disk.cut;
       near_[near_count_] = k;
@@ -177,6 +196,17 @@ bool BoundaryExclusions::GatherAroundDisk(size_t k, std::span<const Vec2> points
   // The points' arcs first: they cover nearly every disk's circle (by their bins alone), and
   // then the other disks are not searched.
   const double meets = circle.cut + spacing_, scale = 16.0 / circle.cut;
+  if (const DiskBins* table = circle.point_from_here) {
+    // By the table alone first, keeping nothing: 9 circles in 10 are covered whole, and those
+    // need neither the arcs kept nor the points after the one that completes the cover.
+    uint64_t covered = 0;
+    for (const Vec2& point : points) {
+      const Vec2 offset = point - disk.centre;
+      if (SquaredLength(offset) >= meets * meets) continue;
+      covered |= table->Of(offset, scale).covered;
+      if (covered == ~uint64_t{0}) return false;
+    }
+  }
   for (const Vec2& point : points) {
     const Vec2 offset = point - disk.centre;
     if (SquaredLength(offset) >= meets * meets) continue;

@@ -34,7 +34,17 @@ class BoundaryExclusions {
   // doubles, as points keep d (min_distance) on circles of radius `spacing`. O(disks) time and
   // memory, and a DiskBins table looked up for each pair of radii; nothing for no disks.
   BoundaryExclusions(std::span<const ExclusionDisk> disks, double min_distance, double spacing,
-                     double max_abs_coordinate);
+                     double max_abs_coordinate) {
+    Reset(disks, min_distance, spacing, max_abs_coordinate);
+  }
+  // No disks, until Reset.
+  BoundaryExclusions() = default;
+
+  // As constructed anew with these arguments, in the memory this one holds (a plane engine's
+  // scratch, region after region: a forest's 1,700 regions a query each allocated about ten
+  // lists here).
+  void Reset(std::span<const ExclusionDisk> disks, double min_distance, double spacing,
+             double max_abs_coordinate);
 
   bool empty() const { return disks_.empty(); }
   // Disks are numbered 0 .. size() - 1 in a fixed order (by cell, then as given).
@@ -136,8 +146,9 @@ class BoundaryExclusions {
   [[gnu::noinline]] bool AddExactArc(Vec2 offset, double disk_radius);
 
   std::vector<Radius> radii_;
+  std::vector<Disk> given_;  // as given, for the filing below (kept for its memory)
   std::vector<Disk> disks_;  // by cell, then as given
-  double spacing_;
+  double spacing_ = 0.0;
   double largest_cut_ = 0.0;
   // Disks filed in square cells of side largest_cut_: cell c holds disks
   // [cell_start_[c], cell_start_[c + 1]).
@@ -145,9 +156,11 @@ class BoundaryExclusions {
   double inverse_cell_ = 0.0;
   int64_t columns_ = 0, rows_ = 0;
   std::vector<uint32_t> cell_start_;
+  std::vector<uint32_t> cell_filled_;        // the filing's cursor a cell (kept for its memory)
   std::vector<const DiskBins*> from_point_;  // radii_[j].from_point, in one array
   // What the last search found: the radius of its circle, the arcs, and the disks near it,
-  // near_[0, near_count_) (room for every disk, so that they are filed without a branch each).
+  // near_[0, near_count_) (room for every disk and one more, so that they are filed without a
+  // branch each).
   double circle_ = 0.0;
   std::vector<DiskArc> arcs_;
   std::vector<KeyArc> exact_arcs_;

@@ -9,6 +9,7 @@
 
 #include "scallop/geometry/vec2.h"
 #include "scallop/sampling/available_boundary.h"
+#include "scallop/sampling/boundary_exclusions.h"
 #include "scallop/sampling/boundary_grid.h"
 #include "scallop/sampling/candidate_boundary.h"
 
@@ -32,6 +33,7 @@ struct BoundaryScratch {
   std::vector<uint32_t> pockets;
   AvailableBoundary boundary;
   std::optional<CandidateBoundary> candidate_boundary;
+  BoundaryExclusions exclusions;
 };
 
 }  // namespace scallop
