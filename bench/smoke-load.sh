@@ -21,6 +21,10 @@ cleanup() {
   rm -rf "$work"
 }
 trap cleanup EXIT
+# A failing step names itself and shows the servers' logs before cleanup removes them (a run
+# in a full ctest once failed in 0.14 s with nothing to read).
+trap 'echo "smoke-load: line $LINENO failed (exit $?); the servers said:" >&2
+      tail -n 20 "$work"/*.out "$work"/*.err >&2 2>/dev/null || true' ERR
 
 # start NAME PREFIX COMMAND...: runs it in the background and sets
 # address[NAME] to the HOST:PORT of its "PREFIX HOST:PORT" line (waits up to
