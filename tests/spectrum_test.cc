@@ -247,6 +247,19 @@ TEST(RadialSpectrumTest, MatchesNaiveAnnulusStatistics) {
   }
 }
 
+// The peak and the low-frequency power on a spectrum written by hand: the first of two equal
+// maxima is the peak, and only the annuli strictly below half its frequency count.
+TEST(RadialSpectrumTest, PeakAndLowFrequencyPowerOfAHandWrittenSpectrum) {
+  RadialSpectrum spectrum;
+  spectrum.frequency = {1, 2, 3, 4, 5, 6, 7, 8};
+  spectrum.mean_power = {0.1, 0.3, 0.5, 1.0, 1.5, 2.5, 2.5, 1.0};
+  EXPECT_EQ(PeakAnnulus(spectrum), 5u);                            // frequency 6; not the later 7
+  EXPECT_DOUBLE_EQ(LowFrequencyPower(spectrum), (0.1 + 0.3) / 2);  // 1 and 2 (3 is not < 3)
+  spectrum.mean_power = {3.0, 0.3, 0.5, 1.0, 1.5, 2.5, 2.5, 1.0};
+  EXPECT_EQ(PeakAnnulus(spectrum), 0u);
+  EXPECT_TRUE(std::isnan(LowFrequencyPower(spectrum)));  // nothing below 0.5
+}
+
 TEST(PeriodogramTest, AveragesWeightEachSetOnce) {
   const std::vector<Vec2> a = UniformPoints(1, 10, kUnitWindow),
                           b = UniformPoints(2, 30, kUnitWindow);

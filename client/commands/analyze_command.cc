@@ -45,18 +45,10 @@ Summary Summarise(const SeriesResult& result, double min_distance) {
                                                           (sets - 1)))
                             : 0.0;
   const std::vector<double> f = FrequenciesPerD(result, min_distance);
-  size_t peak = 0;
-  for (size_t i = 0; i < f.size(); ++i) {
-    if (result.radial.mean_power[i] > result.radial.mean_power[peak]) peak = i;
-  }
+  const size_t peak = PeakAnnulus(result.radial);
   summary.peak_frequency = f[peak];
   summary.peak_power = result.radial.mean_power[peak];
-  double low = 0;
-  int count = 0;
-  for (size_t i = 0; i < f.size() && f[i] < f[peak] / 2; ++i, ++count) {
-    low += result.radial.mean_power[i];
-  }
-  summary.low_power = count > 0 ? low / count : NAN;
+  summary.low_power = LowFrequencyPower(result.radial);
   // The low-energy disk's radius: where radial power first reaches half of
   // white noise's.
   summary.disk_radius = NAN;

@@ -70,32 +70,14 @@ int RunLayeredAnalyze(const AnalyzeArguments& arguments) {
       return 1;
     }
   }
-  const auto peak_of = [&](const LayerSpectrum& layer) {
-    size_t peak = 0;
-    for (size_t i = 0; i < layer.radial.mean_power.size(); ++i) {
-      if (layer.radial.mean_power[i] > layer.radial.mean_power[peak]) peak = i;
-    }
-    return peak;
-  };
   const auto per_d = [&](const LayerSpectrum& layer, double cycles) {
     return cycles / window->Width() * layer.spacing;
-  };
-  // As Summarise's: the mean radial power below half the peak's frequency.
-  const auto low_power_of = [&](const LayerSpectrum& layer) {
-    const double half_peak = layer.radial.frequency[peak_of(layer)] / 2;
-    double sum = 0;
-    int count = 0;
-    for (size_t i = 0; i < layer.radial.frequency.size() && layer.radial.frequency[i] < half_peak;
-         ++i, ++count) {
-      sum += layer.radial.mean_power[i];
-    }
-    return count > 0 ? sum / count : NAN;
   };
   nlohmann::json layers = nlohmann::json::array();
   for (const LayerSpectrum& layer : analysis->layers) {
     std::vector<double> frequencies;
     for (double f : layer.radial.frequency) frequencies.push_back(per_d(layer, f));
-    const size_t peak = peak_of(layer);
+    const size_t peak = PeakAnnulus(layer.radial);
     layers.push_back(
         {{"name", layer.name},
          {"spacing", layer.spacing},
@@ -103,7 +85,7 @@ int RunLayeredAnalyze(const AnalyzeArguments& arguments) {
          {"rho", layer.rho},
          {"peak",
           {{"frequency_per_d", frequencies[peak]}, {"power", layer.radial.mean_power[peak]}}},
-         {"low_frequency_power", low_power_of(layer)},
+         {"low_frequency_power", LowFrequencyPower(layer.radial)},
          {"radial", {{"frequency_per_d", frequencies}, {"power", layer.radial.mean_power}}}});
   }
   nlohmann::json cross = nlohmann::json::array();
@@ -130,13 +112,13 @@ int RunLayeredAnalyze(const AnalyzeArguments& arguments) {
   }
   std::cout << std::setprecision(5);
   for (const LayerSpectrum& layer : analysis->layers) {
-    const size_t peak = peak_of(layer);
+    const size_t peak = PeakAnnulus(layer.radial);
     std::cout << layer.name << " (d " << layer.spacing
               << "): " << static_cast<double>(layer.points) / arguments.sets
               << " points a set, rho " << layer.rho << ", radial power peak "
               << layer.radial.mean_power[peak] << " at "
               << per_d(layer, layer.radial.frequency[peak]) << " / d, low-frequency power "
-              << low_power_of(layer) << "\n";
+              << LowFrequencyPower(layer.radial) << "\n";
   }
   for (const CrossHistogram& histogram : analysis->cross) {
     // The first ratio bin holding a neighbour: >= 1 when the layers keep D.

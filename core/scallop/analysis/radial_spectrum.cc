@@ -51,4 +51,23 @@ StatusOr<RadialSpectrum> ComputeRadialSpectrum(const Periodogram& periodogram) {
   return result;
 }
 
+size_t PeakAnnulus(const RadialSpectrum& spectrum) {
+  size_t peak = 0;
+  for (size_t i = 0; i < spectrum.mean_power.size(); ++i) {
+    if (spectrum.mean_power[i] > spectrum.mean_power[peak]) peak = i;
+  }
+  return peak;
+}
+
+double LowFrequencyPower(const RadialSpectrum& spectrum) {
+  const double half_peak = spectrum.frequency[PeakAnnulus(spectrum)] / 2;
+  double sum = 0;
+  int count = 0;
+  for (size_t i = 0; i < spectrum.frequency.size() && spectrum.frequency[i] < half_peak;
+       ++i, ++count) {
+    sum += spectrum.mean_power[i];
+  }
+  return count > 0 ? sum / count : std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace scallop

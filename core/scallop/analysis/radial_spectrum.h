@@ -29,4 +29,12 @@ struct RadialSpectrum {
 // its max_frequency.
 StatusOr<RadialSpectrum> ComputeRadialSpectrum(const Periodogram& periodogram);
 
+// The annulus of largest mean power (the first of equals). REQUIRES: at least one annulus.
+size_t PeakAnnulus(const RadialSpectrum& spectrum);
+
+// The mean power of the annuli below half the peak's frequency: the depth of
+// the low-energy disk (small for good blue noise, 1 for white). NaN when no
+// annulus lies below it. REQUIRES: at least one annulus.
+double LowFrequencyPower(const RadialSpectrum& spectrum);
+
 }  // namespace scallop
