@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <atomic>
+#include <boost/asio/dispatch.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
@@ -66,6 +67,15 @@ class Session : public std::enable_shared_from_this<Session> {
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
+  // Starts the session on its strand: the first operation on the stream, like
+  // every later one, must not run beside a handler of the session's.
+  static void Start(tcp::socket socket, const HttpListener::Handler& handler,
+                    std::shared_ptr<Gate> gate, std::atomic<int>& open) {
+    auto session = std::make_shared<Session>(std::move(socket), handler, std::move(gate), open);
+    asio::dispatch(session->stream_.get_executor(), [session] { session->Read(); });
+  }
+
+ private:
   void Read() {
     request_ = {};
     stream_.expires_after(kReadTimeout);
@@ -75,7 +85,6 @@ class Session : public std::enable_shared_from_this<Session> {
                      });
   }
 
- private:
   void Dispatch() {
     const uint64_t serial = ++serial_;
     // The timer's wait keeps the session alive while the handler works; the
@@ -149,35 +158,39 @@ struct HttpListener::State {
   asio::steady_timer retry{context};
   std::vector<std::thread> threads;
 
+  // Each connection on a strand of its own: sessions run in parallel on the
+  // threads, each one's handlers in order.
+  void Accept() {
+    acceptor.async_accept(asio::make_strand(context),
+                          [this](boost::beast::error_code error, tcp::socket socket) {
+                            OnAccept(error, std::move(socket));
+                          });
+  }
+
   // Every path re-arms (but Stop's): a handler that returned on an error
   // left the endpoint dead for the life of the process.
-  void Accept() {
-    // Each connection on a strand of its own: sessions run in parallel on
-    // the threads, each one's handlers in order.
-    acceptor.async_accept(
-        asio::make_strand(context), [this](boost::beast::error_code error, tcp::socket socket) {
-          if (error == asio::error::operation_aborted) return;  // closed by Stop
-          if (error) {
-            spdlog::warn("{}: accept failed ({}); retrying in {} ms", name, error.message(),
-                         kAcceptRetryDelay.count());
-            retry.expires_after(kAcceptRetryDelay);
-            retry.async_wait([this](boost::beast::error_code wait_error) {
-              if (!wait_error) Accept();
-            });
-            return;
-          }
-          if (open_connections >= max_connections) {
-            boost::beast::error_code ignored;
-            socket.close(ignored);  // over the cap: its descriptor back at once
-          } else {
-            // An answer is written whole at once: no reason to hold its tail
-            // back for an ACK (Nagle), which costs a delayed ACK's 40 ms.
-            boost::beast::error_code ignored;
-            socket.set_option(tcp::no_delay(true), ignored);
-            std::make_shared<Session>(std::move(socket), handler, gate, open_connections)->Read();
-          }
-          Accept();
-        });
+  void OnAccept(boost::beast::error_code error, tcp::socket socket) {
+    if (error == asio::error::operation_aborted) return;  // closed by Stop
+    if (error) {
+      spdlog::warn("{}: accept failed ({}); retrying in {} ms", name, error.message(),
+                   kAcceptRetryDelay.count());
+      retry.expires_after(kAcceptRetryDelay);
+      retry.async_wait([this](boost::beast::error_code wait_error) {
+        if (!wait_error) Accept();
+      });
+      return;
+    }
+    if (open_connections >= max_connections) {
+      boost::beast::error_code ignored;
+      socket.close(ignored);  // over the cap: its descriptor back at once
+    } else {
+      // An answer is written whole at once: no reason to hold its tail back
+      // for an ACK (Nagle), which costs a delayed ACK's 40 ms.
+      boost::beast::error_code ignored;
+      socket.set_option(tcp::no_delay(true), ignored);
+      Session::Start(std::move(socket), handler, gate, open_connections);
+    }
+    Accept();
   }
 };
 
