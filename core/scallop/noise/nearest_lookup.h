@@ -62,8 +62,8 @@ class NearestLookup {
   // Rejects: INVALID_ARGUMENT for a
   // non-finite coordinate; OUT_OF_RANGE for |x| or |y| > 2^32 d; errors name
   // the position, e.g. "positions[3].x".
-  // Cost, warm: 29 to 43 ns of CPU a position on this project's shared
-  // Intel Xeon at load 2 to 5 (23.3 to 34.0M/s at random positions,
+  // Cost, warm: 29 to 46 ns of CPU a position on this project's shared
+  // Intel Xeon at load 2 to 6 (21.6 to 35.0M/s at random positions,
   // docs/performance.md; Zen 3 unmeasured since it was slower, docs/noise.md), plus a
   // mutex and a hash lookup per region a batch visits. A missing grid costs
   // one PlaneEngine::Points query of 24 d x 24 d, plus generation when cold.

@@ -315,19 +315,34 @@ class NearestSearchGrid::LinePrefetcher {
     if (grid == nullptr) return;
     arrays_ = {Bytes(grid->cell_start_), Bytes(grid->long_block_), Bytes(grid->cell_xs_),
                Bytes(grid->cell_ys_), Bytes(grid->points_)};
-    array_ = 0;
-    line_ = LineOf(arrays_[0].begin);
+    next_array_ = 0;
   }
 
-  SCALLOP_INLINE void Step(int lines) {
-    for (int k = 0; k < lines && array_ < kArrays; ++k) {
-      __builtin_prefetch(reinterpret_cast<const void*>(line_), 0, 2);
-      line_ += kLineBytes;
-      if (line_ >= arrays_[array_].end && ++array_ < kArrays) line_ = LineOf(arrays_[array_].begin);
+  // kLines lines from the current one on, with one test a step: a test and
+  // a move a line, its position kept on the stack, cost the paired loop
+  // more than its prefetches did. A step may reach up to kLines - 1 lines
+  // past its array's end, into whatever follows in memory (a hint, so
+  // harmless); the next step starts the next array.
+  template <int kLines>
+  SCALLOP_INLINE void Step() {
+    if (line_ >= end_ && !StartNextArray()) [[unlikely]]
+      return;
+    for (int k = 0; k < kLines; ++k) {
+      __builtin_prefetch(reinterpret_cast<const void*>(line_ + k * kLineBytes), 0, 2);
     }
+    line_ += kLines * kLineBytes;
   }
 
  private:
+  // Moves to the next array; false when every array has been walked.
+  bool StartNextArray() {
+    if (next_array_ == kArrays) return false;
+    line_ = LineOf(arrays_[next_array_].begin);
+    end_ = arrays_[next_array_].end;
+    ++next_array_;
+    return true;
+  }
+
   struct ByteRange {
     uintptr_t begin = 0, end = 0;
   };
@@ -341,8 +356,9 @@ class NearestSearchGrid::LinePrefetcher {
   static uintptr_t LineOf(uintptr_t address) { return address & ~(kLineBytes - 1); }
 
   std::array<ByteRange, kArrays> arrays_;
-  int array_ = kArrays;  // kArrays: nothing (left) to prefetch
-  uintptr_t line_ = 0;
+  int next_array_ = kArrays;  // kArrays: no array (left) to start
+  uintptr_t line_ = 0;        // the next line to prefetch, in [.., end_) of the current array
+  uintptr_t end_ = 0;
 };
 
 Rect NearestSearchGrid::CoveredSquare(double min_distance, RegionKey key) {
@@ -425,7 +441,6 @@ SCALLOP_INLINE bool NearestSearchGrid::TakeFound(const BlockQuery& query, uint32
   best.squared2 = SquaredDistanceFrom(p, found2.position);
   best.id1 = found1.id;
   best.id2 = found2.id;
-  *query.cell_value1 = found1.cell_value;
   // Each point as one 16-byte store: the caller reads it so, and one built
   // from two 8-byte stores would stall that read (no store forwarding).
   best.point1 = found1.position;
@@ -434,17 +449,34 @@ SCALLOP_INLINE bool NearestSearchGrid::TakeFound(const BlockQuery& query, uint32
   return best.squared2 <= query.radius1 * query.radius1;
 }
 
+SCALLOP_INLINE bool NearestSearchGrid::StoreFound(const PairQuery& query, bool ordered, uint32_t i1,
+                                                  uint32_t i2) const {
+  const Vec2& p = *query.p;
+  const SearchGridPoint& found1 = points_[i1];
+  const SearchGridPoint& found2 = points_[i2];
+  const double squared1 = SquaredDistanceFrom(p, found1.position);
+  const double squared2 = SquaredDistanceFrom(p, found2.position);
+  // Else phase 2 is needed (or a pad is among the two).
+  const bool certified = ordered & (squared2 <= query.radius1 * query.radius1);
+  if (certified) [[likely]] {
+    // ToNearestPoint's fields, its square roots in one instruction.
+    const Pair f = SquareRoots(Pair{squared1, squared2});
+    *query.out = {.id = found1.id,
+                  .position = found1.position,
+                  .f1 = f[0],
+                  .f2 = f[1],
+                  .second_id = found2.id,
+                  .cell_value = found1.cell_value};
+  }
+  return certified;
+}
+
 template <int kLanes>
 SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx, int cy,
                                                           double radius1, TwoNearest& best) const {
   using Keys = typename LaneTypes<kLanes>::Keys;
   static_assert(kRunPoints % kLanes == 0);
-  double cell_value1;  // unused: FindTwoNearest answers without it
-  const BlockQuery query{.p = &p,
-                         .best = &best,
-                         .cell_value1 = &cell_value1,
-                         .cell = cy * kSide + cx,
-                         .radius1 = radius1};
+  const BlockQuery query{.p = &p, .best = &best, .cell = cy * kSide + cx, .radius1 = radius1};
   // Examines every point of the position's 3x3 block, and some beyond it
   // (later cells of a row, the far pads, possibly a point twice): extra
   // points are real, or farther than any block reaches, so they cannot make
@@ -492,7 +524,7 @@ SCALLOP_INLINE bool NearestSearchGrid::FindInBlockQuickly(const Vec2& p, int cx,
 }
 
 template <int kLanes, int kPairs, typename CellFloats>
-SCALLOP_INLINE unsigned NearestSearchGrid::FindPairsQuickly(const BlockQuery* queries,
+SCALLOP_INLINE unsigned NearestSearchGrid::FindPairsQuickly(const PairQuery* queries,
                                                             const CellFloats* g) const {
   using Types = PairLaneTypes<kLanes>;
   using Keys = typename Types::Keys;
@@ -502,13 +534,8 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindPairsQuickly(const BlockQuery* qu
   // same exact distances recomputed for the two found. Each step runs for
   // every pair before the next: the pairs' chains of dependent loads,
   // minima and maxima are independent, and side by side the CPU overlaps them.
-  uint32_t first[2 * kPairs][3];
   bool long_run = false;
-  for (int q = 0; q < 2 * kPairs; ++q) {
-    const uint32_t* runs = cell_start_.data() + queries[q].cell - kSide - 1;
-    for (int r = 0; r < 3; ++r) first[q][r] = runs[r * kSide];
-    long_run |= long_block_[queries[q].cell] != 0;
-  }
+  for (int q = 0; q < 2 * kPairs; ++q) long_run |= long_block_[queries[q].cell] != 0;
   if (long_run) [[unlikely]]
     return kAnswerEachAlone;
   constexpr int kParts = kRunPoints / kHalf;  // vectors a row
@@ -525,8 +552,15 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindPairsQuickly(const BlockQuery* qu
       gy = __builtin_shufflevector(gp, gp, 1, 1, 1, 1, 3, 3, 3, 3);
     }
     // The rows' first points, each broadcast to its half by one in-lane shuffle.
-    const uint32_t(&a)[3] = first[2 * pair];
-    const uint32_t(&b)[3] = first[2 * pair + 1];
+    // (Read here, not with the long rows' test above: the twelve of two
+    // pairs read there outlived the registers and went through the stack.)
+    uint32_t a[3], b[3];
+    const uint32_t* const runs_a = cell_start_.data() + queries[2 * pair].cell - kSide - 1;
+    const uint32_t* const runs_b = cell_start_.data() + queries[2 * pair + 1].cell - kSide - 1;
+    for (int r = 0; r < 3; ++r) {
+      a[r] = runs_a[r * kSide];
+      b[r] = runs_b[r * kSide];
+    }
     const PairRows rows = {a[0], a[1], a[2], 0, b[0], b[1], b[2], 0};
     const typename Types::Bits row_index[3] = {RowIndex<kLanes, 0>(rows) + Types::kIndex,
                                                RowIndex<kLanes, 1>(rows) + Types::kIndex,
@@ -560,9 +594,10 @@ SCALLOP_INLINE unsigned NearestSearchGrid::FindPairsQuickly(const BlockQuery* qu
     const unsigned apart = FloatLanesSet(high_value > low_value * scale + margin);
     const Floats4Bits index = low_bits & kPairIndexMask;
     for (int q = 0; q < 2; ++q) {
-      const bool within = TakeFound(queries[2 * pair + q], index[2 * q], index[2 * q + 1]);
       const bool ordered = ((apart >> (2 * q)) & 3) == 3;
-      certified |= static_cast<unsigned>(ordered & within) << (2 * pair + q);
+      const bool stored =
+          StoreFound(queries[2 * pair + q], ordered, index[2 * q], index[2 * q + 1]);
+      certified |= static_cast<unsigned>(stored) << (2 * pair + q);
     }
   }
   return certified;
@@ -574,7 +609,7 @@ bool NearestSearchGrid::FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, dou
 }
 
 template <typename CellFloats>
-SCALLOP_INLINE bool NearestSearchGrid::LocatePair(BlockQuery* queries, CellFloats& g_floats) const {
+SCALLOP_INLINE bool NearestSearchGrid::LocatePair(PairQuery* queries, CellFloats& g_floats) const {
   const Pair a = LoadPair(*queries[0].p), b = LoadPair(*queries[1].p);
   const Pair origin = std::bit_cast<Pair>(origin_);
   const Quad g = (__builtin_shufflevector(a, b, 0, 1, 2, 3) -
@@ -604,31 +639,12 @@ SCALLOP_INLINE bool NearestSearchGrid::LocatePair(BlockQuery* queries, CellFloat
   return true;
 }
 
-namespace {
-// The basis from a certified quick pass, its square roots in one instruction.
-SCALLOP_INLINE void StoreBasis(const TwoNearest& best, double cell_value, NearestPoint& out) {
-  const Pair f = SquareRoots(Pair{best.squared1, best.squared2});
-  out = {.id = best.id1,
-         .position = best.point1,
-         .f1 = f[0],
-         .f2 = f[1],
-         .second_id = best.id2,
-         .cell_value = cell_value};
-}
-}  // namespace
-
-template <int kLanes>
 SCALLOP_INLINE void NearestSearchGrid::Finish(std::span<const IndexedPosition> positions,
-                                              uint32_t k, const TwoNearest* best,
-                                              const double* cell_values, unsigned certified,
-                                              uint32_t entries, NearestPoint* results,
+                                              uint32_t k, unsigned certified, uint32_t entries,
+                                              NearestPoint* results,
                                               std::vector<uint32_t>& refused) const {
   for (uint32_t q = 0; q < entries; ++q) {
-    if (certified & (1u << q)) {
-      StoreBasis(best[q], cell_values[q], results[positions[k + q].index]);
-    } else {
-      AnswerExactly(positions[k + q], k + q, results, refused);
-    }
+    if ((certified & (1u << q)) == 0) AnswerExactly(positions[k + q], k + q, results, refused);
   }
 }
 
@@ -636,11 +652,9 @@ template <int kLanes>
 SCALLOP_INLINE void NearestSearchGrid::AnswerPair(std::span<const IndexedPosition> positions,
                                                   uint32_t k, NearestPoint* results,
                                                   std::vector<uint32_t>& refused) const {
-  TwoNearest best[2];
-  double cell_values[2];
-  BlockQuery queries[2] = {
-      {.p = &positions[k].position, .best = &best[0], .cell_value1 = &cell_values[0]},
-      {.p = &positions[k + 1].position, .best = &best[1], .cell_value1 = &cell_values[1]}};
+  PairQuery queries[2] = {
+      {.p = &positions[k].position, .out = results + positions[k].index},
+      {.p = &positions[k + 1].position, .out = results + positions[k + 1].index}};
   Floats4 g = {};
   const unsigned certified = paired_ && LocatePair(queries, g)
                                  ? FindPairsQuickly<2 * kLanes, 1>(queries, &g)
@@ -650,7 +664,7 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerPair(std::span<const IndexedPositio
     AnswerAlone(positions[k + 1], k + 1, results, refused);
     return;
   }
-  Finish<kLanes>(positions, k, best, cell_values, certified, 2, results, refused);
+  Finish(positions, k, certified, 2, results, refused);
 }
 
 template <int kLanes>
@@ -667,13 +681,10 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosit
   // half as much, two pairs spilled and halved the speed.
   constexpr bool kTwoPairs = kLanes == 4;
   for (; kTwoPairs && k + 4 <= count; k += 4) {
-    prefetcher.Step(2 * kPrefetchLinesPerPair);
-    TwoNearest best[4];
-    double cell_values[4];
-    BlockQuery queries[4];
+    prefetcher.Step<2 * kPrefetchLinesPerPair>();
+    PairQuery queries[4];
     for (int q = 0; q < 4; ++q) {
-      queries[q] = {
-          .p = &positions[k + q].position, .best = &best[q], .cell_value1 = &cell_values[q]};
+      queries[q] = {.p = &positions[k + q].position, .out = results + positions[k + q].index};
     }
     Floats4 g[2] = {};
     // Both pairs located whatever the first's verdict (each fills its queries).
@@ -688,10 +699,10 @@ SCALLOP_INLINE void NearestSearchGrid::AnswerEachIn(std::span<const IndexedPosit
       AnswerPair<kLanes>(positions, k + 2, results, refused);
       continue;
     }
-    Finish<kLanes>(positions, k, best, cell_values, certified, 4, results, refused);
+    Finish(positions, k, certified, 4, results, refused);
   }
   for (; k + 2 <= count; k += 2) {
-    prefetcher.Step(kPrefetchLinesPerPair);
+    prefetcher.Step<kPrefetchLinesPerPair>();
     AnswerPair<kLanes>(positions, k, results, refused);
   }
   if (k < count) AnswerAlone(positions[k], k, results, refused);

@@ -160,7 +160,13 @@ class NearestSearchGrid {
   struct BlockQuery {
     const Vec2* p;
     TwoNearest* best;
-    double* cell_value1;  // CellValue(best->id1), from the grid's table
+    int cell = 0;
+    double radius1 = 0;
+  };
+  // The same for a position of a pair, whose answer goes to *out directly.
+  struct PairQuery {
+    const Vec2* p;
+    NearestPoint* out;
     int cell = 0;
     double radius1 = 0;
   };
@@ -170,7 +176,7 @@ class NearestSearchGrid {
   // positions' cell coordinates (CellCoordinates) as four floats, x and y
   // of each.
   template <typename CellFloats>
-  bool LocatePair(BlockQuery* queries, CellFloats& g) const;
+  bool LocatePair(PairQuery* queries, CellFloats& g) const;
   // Phase 1 without branches on the data, kLanes double keys at a time, for
   // when its answer is certified and free of near-ties; false sends the
   // caller to the exact scan. Inlined into the entry points below (the
@@ -181,6 +187,11 @@ class NearestSearchGrid {
   // into *query.best with their exact squared distances; whether the second
   // lies within the radius the block covers.
   bool TakeFound(const BlockQuery& query, uint32_t i1, uint32_t i2) const;
+  // The same for a pair's position whose keys were `ordered` (apart), its
+  // answer (ToNearestPoint's bits) written to *query.out directly when it
+  // is certified, which it returns: through a TwoNearest, the stores and
+  // the reloads after cost the paired loop 3% of its instructions.
+  bool StoreFound(const PairQuery& query, bool ordered, uint32_t i1, uint32_t i2) const;
   // Phase 1 for two positions at once, in float keys (kLanes of them, half
   // a position's), trusted where the three smallest of each are apart by
   // more than float rounding can blur (docs/noise.md, "The paired pass").
@@ -189,7 +200,7 @@ class NearestSearchGrid {
   // one-position pass.
   static constexpr unsigned kAnswerEachAlone = 1u << 31;
   template <int kLanes, int kPairs, typename CellFloats>
-  unsigned FindPairsQuickly(const BlockQuery* queries, const CellFloats* g) const;
+  unsigned FindPairsQuickly(const PairQuery* queries, const CellFloats* g) const;
   bool FindInBlockInTwoLanes(const Vec2& p, int cx, int cy, double radius1, TwoNearest& best) const;
   bool FindInBlockInFourLanes(const Vec2& p, int cx, int cy, double radius1,
                               TwoNearest& best) const;
@@ -197,12 +208,10 @@ class NearestSearchGrid {
   template <int kLanes>
   void AnswerPair(std::span<const IndexedPosition> positions, uint32_t k, NearestPoint* results,
                   std::vector<uint32_t>& refused) const;
-  // The answers of entries k .. k + entries - 1 from a quick pass's bits
-  // (bit q for entry k + q) and `best`, or by the exact phases.
-  template <int kLanes>
-  void Finish(std::span<const IndexedPosition> positions, uint32_t k, const TwoNearest* best,
-              const double* cell_values, unsigned certified, uint32_t entries,
-              NearestPoint* results, std::vector<uint32_t>& refused) const;
+  // Entries k .. k + entries - 1 after a quick pass: those whose bit
+  // (bit q for entry k + q) is clear, by the exact phases.
+  void Finish(std::span<const IndexedPosition> positions, uint32_t k, unsigned certified,
+              uint32_t entries, NearestPoint* results, std::vector<uint32_t>& refused) const;
   // AnswerEach with kLanes lanes, inlined into the two entry points below.
   template <int kLanes>
   void AnswerEachIn(std::span<const IndexedPosition> positions, NearestPoint* results,
