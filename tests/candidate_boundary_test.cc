@@ -11,7 +11,9 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+#include <span>
 #include <vector>
 
 #include "scallop/random/rng.h"
@@ -431,6 +433,112 @@ TEST(DiskArcTest, CutAroundPointLeavesTheRangesOfCuttingEveryArc) {
   EXPECT_GT(empty, 200);
   EXPECT_GT(with_ranges, 1000);
   EXPECT_GT(caught, tried / 4);
+}
+
+// Disks on a jittered square lattice of `count` x `count` about `low`, `step` apart and moved by
+// up to `jitter` each way (so at least step - 2 jitter apart), with radii drawn from `radii`: a
+// later layer's disks, sparse, as the earlier layers' points are.
+std::vector<ExclusionDisk> LatticeDisks(Rng& rng, Vec2 low, int count, double step, double jitter,
+                                        std::span<const double> radii) {
+  std::vector<ExclusionDisk> disks;
+  for (int j = 0; j < count; ++j) {
+    for (int i = 0; i < count; ++i) {
+      const Vec2 at = {low.x + i * step + rng.Uniform(-jitter, jitter),
+                       low.y + j * step + rng.Uniform(-jitter, jitter)};
+      disks.push_back({at, radii[rng.Below(radii.size())]});
+    }
+  }
+  return disks;
+}
+
+// The disk search on sparse disks, as a forest's later layers have them: no two in a cell of the
+// search (found by its cells' bits), on a few cells and on many (numbered from the bits alone), and
+// with the windows too wide for the bits and the cells holding two (the rows scanned). Each point's
+// circle and each disk's circle is cut as cutting every disk's arc would (the oracle, over all
+// disks), and each disk the search keeps decides Excludes on the circle as a test of every disk
+// does; leaving one disk out of the oracle is caught.
+TEST(DiskArcTest, SearchOfSparseDisksFindsEveryDiskNearTheCircle) {
+  Rng rng(26);
+  struct Case {
+    const char* name;
+    int count;  // lattice points a side
+    double step, jitter;
+    std::vector<double> radii;
+    int pairs;  // disks added 0.01 from another: cells holding two
+  };
+  // Radii 0.88 and 0.6 file in cells 0.88 wide (diagonal 1.25 < 1.76 - 2 x 0.2); radius 0.3 in
+  // cells 0.3 wide (diagonal 0.42 < 0.9), where a search about a circle of radius 1 spans 9 or
+  // more.
+  const Case cases[] = {{"few cells", 20, 1.76, 0.2, {0.88, 0.6}, 0},
+                        {"many cells", 150, 1.76, 0.2, {0.88, 0.6}, 0},
+                        {"wide windows", 30, 1.5, 0.3, {0.3}, 0},
+                        {"cells holding two", 20, 1.76, 0.2, {0.88, 0.6}, 10}};
+  for (const Case& test : cases) {
+    const double d = 1.0;
+    const Vec2 low = {rng.Uniform(-50, 50), rng.Uniform(-50, 50)};
+    std::vector<ExclusionDisk> disks =
+        LatticeDisks(rng, low, test.count, test.step, test.jitter, test.radii);
+    for (int n = 0; n < test.pairs; ++n) {
+      const ExclusionDisk& twin = disks[rng.Below(disks.size())];
+      disks.push_back({{twin.centre.x + 0.01, twin.centre.y + 0.01}, twin.radius});
+    }
+    const double side = test.count * test.step, max_abs = std::abs(low.x) + std::abs(low.y) + side;
+    const double spacing = SpacingFor(d, max_abs);
+    BoundaryExclusions exclusions(disks, d, spacing, max_abs);
+    int caught = 0, tried = 0, excluded = 0, free = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+      const Vec2 centre = {low.x + rng.Uniform(-1, side), low.y + rng.Uniform(-1, side)};
+      AvailableBoundary built;
+      built.Reset();
+      exclusions.CutAroundPoint(centre, built);
+      AvailableBoundary expected;
+      expected.Reset();
+      CutEveryDisk(exclusions, centre, spacing, expected);
+      ASSERT_TRUE(SameRanges(built, expected)) << test.name << " trial " << trial;
+      // Excludes, after the search, against a test of every disk, on the circle.
+      if (exclusions.GatherAroundPoint(centre)) {
+        for (int n = 0; n < 8; ++n) {
+          const double angle = rng.Uniform(0, 7);
+          const Vec2 x = {centre.x + spacing * std::cos(angle),
+                          centre.y + spacing * std::sin(angle)};
+          ASSERT_EQ(exclusions.Excludes(x), exclusions.AnyExcludes(x))
+              << test.name << " trial " << trial << " x " << x.x << "," << x.y;
+          excluded += exclusions.Excludes(x);
+          free += !exclusions.Excludes(x);
+        }
+      }
+      // The planted fault: the nearest disk left out of the oracle.
+      size_t nearest = 0;
+      for (size_t k = 1; k < exclusions.size(); ++k) {
+        if (SquaredDistance(exclusions.centre(k), centre) <
+            SquaredDistance(exclusions.centre(nearest), centre)) {
+          nearest = k;
+        }
+      }
+      AvailableBoundary planted;
+      planted.Reset();
+      CutEveryDisk(exclusions, centre, spacing, planted, nearest);
+      ++tried;
+      caught += !SameRanges(built, planted);
+
+      // A disk's circle, the other disks cut from it (no points).
+      const size_t k = rng.Below(exclusions.size());
+      const double radius = exclusions.cut_radius(k);
+      AvailableBoundary around;
+      around.Reset();
+      exclusions.CutAroundDisk(k, {}, around);
+      AvailableBoundary around_expected;
+      around_expected.Reset();
+      CutEveryDisk(exclusions, exclusions.centre(k), radius, around_expected, k);
+      ASSERT_TRUE(SameRanges(around, around_expected)) << test.name << " disk " << k;
+    }
+    EXPECT_GT(excluded, 100) << test.name;
+    EXPECT_GT(free, 100) << test.name;
+    // Measured 38% to 93%: where other disks' arcs cover the nearest one's, leaving it out
+    // changes nothing.
+    EXPECT_GT(caught, tried / 4) << test.name;
+    std::printf("%s: %d of %d faults caught\n", test.name, caught, tried);
+  }
 }
 
 // The sampler's two steps for a point's circle in a layered run: the disks near it gathered,

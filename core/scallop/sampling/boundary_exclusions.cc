@@ -4,8 +4,10 @@
 #include "scallop/sampling/boundary_exclusions.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "scallop/sampling/boundary_arcs.h"
 #include "scallop/sampling/spacing.h"
@@ -21,6 +23,13 @@ const DiskBins* TableFor(double disk, double disk_cut, double circle, double cir
   const double slack = 0.5 * DiskBins::kRatioSlack * ratio;
   return std::abs(disk_cut / circle_cut - ratio) <= slack ? DiskBins::ForRatio(ratio) : nullptr;
 }
+
+// The set bits of each byte (std::popcount is a library call without -mpopcnt).
+constexpr std::array<uint8_t, 256> kOnesIn = [] {
+  std::array<uint8_t, 256> ones{};
+  for (int b = 1; b < 256; ++b) ones[b] = static_cast<uint8_t>(ones[b / 2] + b % 2);
+  return ones;
+}();
 
 }  // namespace
 
@@ -85,7 +94,8 @@ void BoundaryExclusions::Reset(std::span<const ExclusionDisk> disks, double min_
     return static_cast<size_t>(row * columns_ + column);
   };
   cell_start_.assign(static_cast<size_t>(columns_ * rows_) + 1, 0);
-  for (const Disk& disk : given) ++cell_start_[cell_of(disk.centre) + 1];
+  uint32_t most = 0;  // disks in the fullest cell
+  for (const Disk& disk : given) most = std::max(most, ++cell_start_[cell_of(disk.centre) + 1]);
   for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
   disks_.resize(given.size());
   std::vector<uint32_t>& filled = cell_filled_;
@@ -93,6 +103,29 @@ void BoundaryExclusions::Reset(std::span<const ExclusionDisk> disks, double min_
   for (const Disk& disk : given) disks_[filled[cell_of(disk.centre)]++] = disk;
   arcs_.reserve(disks_.size());
   if (near_.size() < disks_.size() + 1) near_.resize(disks_.size() + 1);
+
+  occupancy_.clear();
+  filed_before_.clear();
+  if (most > 1) return;
+  occupancy_stride_ = (columns_ + 7) / 8 + 8;
+  occupancy_.assign(static_cast<size_t>((rows_ + 7) * occupancy_stride_), 0);
+  for (const Disk& disk : given) {
+    const int64_t column =
+        std::min(static_cast<int64_t>((disk.centre.x - origin_.x) * inverse_cell_), columns_ - 1);
+    const int64_t row =
+        std::min(static_cast<int64_t>((disk.centre.y - origin_.y) * inverse_cell_), rows_ - 1);
+    occupancy_[static_cast<size_t>(row * occupancy_stride_ + column / 8)] |=
+        static_cast<uint8_t>(1u << (column % 8));
+  }
+  if (cell_start_.size() <= kCountedCells) return;
+  // Disks are filed by cell, row-major, one a cell at most: a cell's disk is numbered by the
+  // occupied cells before it.
+  filed_before_.resize(static_cast<size_t>(rows_ * occupancy_stride_));
+  uint32_t filed = 0;
+  for (size_t b = 0; b < filed_before_.size(); ++b) {
+    filed_before_[b] = filed;
+    filed += kOnesIn[occupancy_[b]];
+  }
 }
 
 bool BoundaryExclusions::AddExactArc(Vec2 offset, double disk_radius) {
@@ -100,13 +133,16 @@ bool BoundaryExclusions::AddExactArc(Vec2 offset, double disk_radius) {
   const DiskCover cover = CoveredArcOfCircle(offset, circle_, disk_radius, arc);
   if (cover == DiskCover::kWhole) return false;
   if (cover == DiskCover::kNone) return true;
-  arcs_.push_back({BinsOf(arc), offset, disk_radius, static_cast<int32_t>(exact_arcs_.size())});
+  const ArcBins bins = BinsOf(arc);
+  covered_ |= bins.covered;
+  arcs_.push_back({bins, offset, disk_radius, static_cast<int32_t>(exact_arcs_.size())});
   exact_arcs_.push_back(arc);
   return true;
 }
 
 void BoundaryExclusions::StartSearch(double circle) {
   arcs_.clear();
+  covered_ = 0;
   exact_arcs_.clear();
   near_count_ = 0;
   circle_ = circle;
@@ -127,6 +163,57 @@ bool BoundaryExclusions::AddDisksNear(const Vec2& centre, const DiskBins* const*
   const int64_t c1 = index(centre.x + reach - origin_.x, columns_);
   const int64_t r0 = index(centre.y - reach - origin_.y, rows_);
   const int64_t r1 = index(centre.y + reach - origin_.y, rows_);
+  if (!occupancy_.empty() && c1 - c0 < 8 && r1 - r0 < 8) {
+    GatherByOccupancy(centre, c0, c1, r0, r1);
+  } else {
+    GatherByRows(centre, c0, c1, r0, r1);
+  }
+  // Then their arcs.
+  bool whole = false;
+  for (size_t n = 0; n < near_count_; ++n) {
+    const uint32_t k = near_[n];
+    if (k == skip) continue;
+    const Disk& disk = disks_[k];
+    whole = whole || !AddArc(disk.centre - centre, scale, disk.cut, tables[disk.radius]);
+  }
+  return !whole;
+}
+
+void BoundaryExclusions::GatherByOccupancy(const Vec2& centre, int64_t c0, int64_t c1, int64_t r0,
+                                           int64_t r1) {
+  const double circle = circle_;
+  // Bit 8 k + j: the cell of row r0 + k, column c0 + j, holds a disk; ascending bits are
+  // ascending numbers. Always 8 rows, those past r1 masked off: a fixed count, no branch.
+  const uint64_t row_mask = (uint64_t{2} << (c1 - c0)) - 1;
+  uint64_t occupied = 0;
+  for (int64_t k = 0; k < 8; ++k) {
+    uint64_t word;  // little-endian: byte b of a row holds its columns 8 b to 8 b + 7
+    std::memcpy(&word, &occupancy_[static_cast<size_t>((r0 + k) * occupancy_stride_ + c0 / 8)], 8);
+    const uint64_t in_window = -static_cast<uint64_t>(k <= r1 - r0);
+    occupied |= ((word >> (c0 % 8)) & row_mask & in_window) << (8 * k);
+  }
+  // Each filed without a branch on whether it is near.
+  while (occupied != 0) {
+    const int bit = std::countr_zero(occupied);
+    occupied &= occupied - 1;
+    const int64_t column = c0 + (bit & 7), row = r0 + (bit >> 3);
+    uint32_t k;
+    if (filed_before_.empty()) {  // the same for every search of a run: predicted
+      k = cell_start_[static_cast<size_t>(row * columns_ + column)];
+    } else {
+      const auto byte = static_cast<size_t>(row * occupancy_stride_ + column / 8);
+      k = filed_before_[byte] + kOnesIn[occupancy_[byte] & ((1u << (column % 8)) - 1)];
+    }
+    const Disk& disk = disks_[k];
+    const double meets = circle + disk.cut;
+    near_[near_count_] = k;
+    near_count_ += SquaredLength(disk.centre - centre) < meets * meets;
+  }
+}
+
+void BoundaryExclusions::GatherByRows(const Vec2& centre, int64_t c0, int64_t c1, int64_t r0,
+                                      int64_t r1) {
+  const double circle = circle_;
   // The disks near, filed without a branch each (whether one is near cannot be predicted)...
   const auto top = static_cast<uint32_t>(disks_.size() - 1);
   for (int64_t row = r0; row <= r1; ++row) {
@@ -150,22 +237,12 @@ bool BoundaryExclusions::AddDisksNear(const Vec2& centre, const DiskBins* const*
       near_count_ += SquaredLength(disk.centre - centre) < meets * meets;
     }
   }
-  // ... then their arcs.
-  bool whole = false;
-  for (size_t n = 0; n < near_count_; ++n) {
-    const uint32_t k = near_[n];
-    if (k == skip) continue;
-    const Disk& disk = disks_[k];
-    whole = whole || !AddArc(disk.centre - centre, scale, disk.cut, tables[disk.radius]);
-  }
-  return !whole;
 }
 
 void BoundaryExclusions::Cut(AvailableBoundary& boundary) const {
   // The bins the ranges meet; the arcs that meet none of them change nothing.
   const uint64_t met = boundary.BinsMet();
-  uint64_t covered = 0;
-  for (const DiskArc& arc : arcs_) covered |= arc.bins.covered;
+  const uint64_t covered = covered_;
   if ((met & ~covered) == 0) {
     boundary.Clear();  // every bin the ranges meet lies inside one arc
     return;
