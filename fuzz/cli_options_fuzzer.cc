@@ -7,6 +7,7 @@
 // refusal names its option ("--rect: ...") or world field; an accepted
 // rectangle is finite and not inverted, and printed back exactly (%.17g) it
 // parses to the same bits; an accepted seed prints back as the same number.
+#include <CLI/CLI.hpp>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
