@@ -39,9 +39,16 @@ done
 
 work=$(mktemp -d /tmp/scallop-soak-XXXXXX)
 server_pid='' load_pid=''
+# A failed run keeps the server's and the load's logs beside OUT (OUT.logs/),
+# since a rerun overwrites OUT and a flaky failure may not come back.
 cleanup() {
+  local status=$?
   for pid in $load_pid $server_pid; do kill "$pid" 2>/dev/null || true; done
   wait 2>/dev/null || true
+  if ((status != 0)); then
+    rm -rf "$out.logs" && mkdir -p "$out.logs" && cp "$work"/* "$out" "$out.logs/" 2>/dev/null
+    echo "soak: failed (status $status); logs and samples kept in $out.logs" >&2
+  fi
   rm -rf "$work"
 }
 trap cleanup EXIT
