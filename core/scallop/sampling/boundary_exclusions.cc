@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 #include "scallop/sampling/boundary_arcs.h"
 #include "scallop/sampling/spacing.h"
@@ -86,11 +87,13 @@ void BoundaryExclusions::Reset(std::span<const ExclusionDisk> disks, double min_
   inverse_cell_ = 1.0 / largest_cut_;
   columns_ = static_cast<int64_t>((high.x - low.x) * inverse_cell_) + 1;
   rows_ = static_cast<int64_t>((high.y - low.y) * inverse_cell_) + 1;
+  const auto column_row_of = [&](Vec2 p) {
+    return std::pair{
+        std::min(static_cast<int64_t>((p.x - origin_.x) * inverse_cell_), columns_ - 1),
+        std::min(static_cast<int64_t>((p.y - origin_.y) * inverse_cell_), rows_ - 1)};
+  };
   const auto cell_of = [&](Vec2 p) {
-    const int64_t column =
-        std::min(static_cast<int64_t>((p.x - origin_.x) * inverse_cell_), columns_ - 1);
-    const int64_t row =
-        std::min(static_cast<int64_t>((p.y - origin_.y) * inverse_cell_), rows_ - 1);
+    const auto [column, row] = column_row_of(p);
     return static_cast<size_t>(row * columns_ + column);
   };
   cell_start_.assign(static_cast<size_t>(columns_ * rows_) + 1, 0);
@@ -110,10 +113,7 @@ void BoundaryExclusions::Reset(std::span<const ExclusionDisk> disks, double min_
   occupancy_stride_ = (columns_ + 7) / 8 + 8;
   occupancy_.assign(static_cast<size_t>((rows_ + 7) * occupancy_stride_), 0);
   for (const Disk& disk : given) {
-    const int64_t column =
-        std::min(static_cast<int64_t>((disk.centre.x - origin_.x) * inverse_cell_), columns_ - 1);
-    const int64_t row =
-        std::min(static_cast<int64_t>((disk.centre.y - origin_.y) * inverse_cell_), rows_ - 1);
+    const auto [column, row] = column_row_of(disk.centre);
     occupancy_[static_cast<size_t>(row * occupancy_stride_ + column / 8)] |=
         static_cast<uint8_t>(1u << (column % 8));
   }
