@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -67,14 +68,13 @@ int Main(int argc, char** argv) {
                         ".bin?level=" + std::to_string(level));
     }
   }
-  // Asks `target` on `connection`, and aborts unless the answer is 200 with
+  // Asks `target` on `connection`, and throws unless the answer is 200 with
   // the X-Cache-Status `cache` (empty: direct, none).
   auto fetch = [](HttpConnection& connection, const std::string& target, const char* cache) {
     std::string body;
     if (connection.Get(target, body) != 200 || connection.last_cache_status() != cache) {
-      std::fprintf(stderr, "%s: not a 200 %s (X-Cache-Status '%s')\n", target.c_str(), cache,
-                   connection.last_cache_status().c_str());
-      std::abort();
+      throw std::runtime_error(target + ": not a 200 " + cache + " (X-Cache-Status '" +
+                               connection.last_cache_status() + "')");
     }
     return body.size();
   };
@@ -121,4 +121,13 @@ int Main(int argc, char** argv) {
 }  // namespace
 }  // namespace scallop
 
-int main(int argc, char** argv) { return scallop::Main(argc, argv); }
+// A failed fetch ends the run through main, so that nginx and scallopd are
+// stopped by their destructors rather than left running by an abort.
+int main(int argc, char** argv) {
+  try {
+    return scallop::Main(argc, argv);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "nginx_tiles_bench: %s\n", error.what());
+    return 1;
+  }
+}

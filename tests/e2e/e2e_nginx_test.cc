@@ -777,5 +777,32 @@ TEST_F(E2eNginxTest, RestartingEveryReplicaChangesNothingAClientSees) {
   EXPECT_EQ(have.ids, want.ids);
 }
 
+// NginxProcess gives every configured port a loopback port of its own, and
+// blocks that share a configured port share it. A configuration of many
+// listens (which, when ports were picked and released one at a time, now and
+// then gave two of them one port: nginx then answers both from the first
+// block) answers each block's own text on its own address.
+TEST(NginxProcessTest, EveryConfiguredPortListensApart) {
+  constexpr int kListens = 256;
+  std::ostringstream config;
+  for (int k = 0; k < kListens; ++k) {
+    config << "server {\n    listen " << 9000 + k << ";\n    return 200 \"block " << k
+           << "\";\n}\n";
+  }
+  config << "server {\n    listen 9000;\n    server_name twin;\n    return 200 \"twin\";\n}\n";
+  const std::string path = ::testing::TempDir() + "/nginx_many_listens.conf";
+  std::ofstream(path) << config.str();
+  const std::unique_ptr<NginxProcess> nginx = NginxProcess::Start(path, {});
+  ASSERT_NE(nginx, nullptr);
+  std::set<std::string> addresses;
+  for (int k = 0; k < kListens; ++k) {
+    const std::string address = nginx->Address(9000 + k);
+    addresses.insert(address);
+    EXPECT_EQ(Fetch(address, http::verb::get, "/").body, "block " + std::to_string(k)) << address;
+  }
+  EXPECT_EQ(addresses.size(), static_cast<size_t>(kListens));
+  EXPECT_EQ(Fetch(nginx->Address(9000), http::verb::get, "/", {{"Host", "twin"}}).body, "twin");
+}
+
 }  // namespace
 }  // namespace scallop::testing

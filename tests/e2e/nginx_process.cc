@@ -1,8 +1,10 @@
 // Rewriting a deploy/nginx file for loopback, and running nginx on it.
 #include "tests/e2e/nginx_process.h"
 
+#include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -17,18 +19,37 @@
 namespace scallop::testing {
 namespace {
 
-// A loopback port nobody listens on now (the kernel's pick, released).
-int FreePort() {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t length = sizeof(address);
-  const bool ok = bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) == 0 &&
-                  getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) == 0;
-  close(fd);
-  return ok ? ntohs(address.sin_port) : -1;
-}
+// Loopback ports nobody listens on, the kernel's picks. Each stays bound
+// until Release, so that no two picks are the same port: two listens on one
+// port make nginx serve both from the first server block ("conflicting server
+// name"), and an HTTP/1.1 client then reads HTTP/2 frames.
+class PortReservations {
+ public:
+  PortReservations() = default;
+  PortReservations(const PortReservations&) = delete;
+  PortReservations& operator=(const PortReservations&) = delete;
+  ~PortReservations() { Release(); }
+
+  int Reserve() {
+    const int fd = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t length = sizeof(address);
+    const bool ok = bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) == 0 &&
+                    getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) == 0;
+    fds_.push_back(fd);
+    return ok ? ntohs(address.sin_port) : -1;
+  }
+  // Unbinds them all, for nginx to listen on.
+  void Release() {
+    for (const int fd : fds_) close(fd);
+    fds_.clear();
+  }
+
+ private:
+  std::vector<int> fds_;
+};
 
 bool Accepts(int port) {
   const int fd = socket(AF_INET, SOCK_STREAM, 0);
@@ -73,6 +94,7 @@ std::unique_ptr<NginxProcess> NginxProcess::Start(
   std::ostringstream out;
   std::string line, upstream;  // the upstream block we are in, if any
   bool servers_written = false;
+  PortReservations ports;
   for (std::smatch match; std::getline(in, line);) {
     if (std::regex_search(line, match, upstream_open)) {
       upstream = match[1];
@@ -89,9 +111,12 @@ std::unique_ptr<NginxProcess> NginxProcess::Start(
       servers_written = true;
       continue;
     } else if (std::regex_search(line, match, listen_line)) {
-      const int port = FreePort();
-      process->addresses_[std::stoi(match[2])] = "127.0.0.1:" + std::to_string(port);
-      line = std::string(match[1]) + "listen 127.0.0.1:" + std::to_string(port) +
+      // Server blocks sharing a configured port share its stand-in too.
+      const int configured = std::stoi(match[2]);
+      if (!process->addresses_.contains(configured)) {
+        process->addresses_[configured] = "127.0.0.1:" + std::to_string(ports.Reserve());
+      }
+      line = std::string(match[1]) + "listen " + process->addresses_[configured] +
              std::string(match[3]) + ";";
     }
     out << line << '\n';
@@ -113,19 +138,33 @@ std::unique_ptr<NginxProcess> NginxProcess::Start(
 
   const std::string error_log = directory + "/error.log", conf = directory + "/nginx.conf",
                     prefix = directory + "/";
+  const std::string console_path = directory + "/console.log";
+  const int console = open(console_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  ports.Release();
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid == 0) {
+    // nginx must not hold the test's stdout and stderr: a test that dies
+    // without stopping it would leave CTest waiting for their end until its
+    // timeout. The master dies with the test (its workers and cache
+    // processes do not: nginx has no such option for them).
+    dup2(console, STDOUT_FILENO);
+    dup2(console, STDERR_FILENO);
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(127);  // the test died before prctl
     execl(NGINX_PATH, NGINX_PATH, "-p", prefix.c_str(), "-e", error_log.c_str(), "-c", conf.c_str(),
           static_cast<char*>(nullptr));
     _exit(127);
   }
+  close(console);
   process->pid_ = pid;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   for (const auto& [configured, address] : process->addresses_) {
     const int port = std::stoi(address.substr(address.rfind(':') + 1));
     while (!Accepts(port)) {
       if (std::chrono::steady_clock::now() > deadline || waitpid(pid, nullptr, WNOHANG) == pid) {
-        std::cerr << "nginx did not start; error log:\n" << ReadText(error_log) << '\n';
+        std::cerr << "nginx did not start; error log:\n"
+                  << ReadText(error_log) << ReadText(console_path) << '\n';
         return nullptr;
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(20));

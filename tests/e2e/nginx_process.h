@@ -22,7 +22,9 @@ class NginxProcess {
   // (max_fails=...). Every `listen PORT ...;` gets a free loopback port; every
   // "/var/log/nginx/" and "/var/cache/nginx/" becomes the directory. Waits
   // until every listen port accepts. Null (with nginx's error log on stderr)
-  // when it fails.
+  // when it fails. nginx writes its stdout and stderr to the directory, and
+  // is killed when the thread that started it ends: start it from the test's
+  // main thread.
   static std::unique_ptr<NginxProcess> Start(
       const std::string& config_path,
       const std::map<std::string, std::vector<std::string>>& upstreams);

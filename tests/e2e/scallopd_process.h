@@ -18,7 +18,9 @@ class ScallopdProcess {
   // another build, e.g. to see a new test fail on the old server) with
   // `arguments` plus --listen `listen`, and waits up to 20 s for SERVING,
   // asked over `connection` (TLS for a TLS server). Client() connects with it.
-  // Null (with the reason on stderr) if it fails.
+  // Null (with the reason on stderr) if it fails. The server is killed when
+  // the thread that started it ends (PR_SET_PDEATHSIG), so that a test that
+  // dies leaves none behind: start it from the test's main thread.
   static std::unique_ptr<ScallopdProcess> Start(const std::vector<std::string>& arguments,
                                                 const std::string& listen = "127.0.0.1:0",
                                                 const client::ConnectionOptions& connection = {});
