@@ -19,7 +19,8 @@ class NginxProcess {
   // Starts NGINX_PATH on `config_path` (an http-level file). In each
   // `upstream NAME { ... }` block named in `upstreams`, the `server` lines are
   // replaced by one line per address, with the first line's parameters
-  // (max_fails=...). Every `listen PORT ...;` gets a free loopback port; every
+  // (max_fails=...). Each PORT of a `listen PORT ...;` gets a free loopback
+  // port of its own (the same one for every block listening on PORT); every
   // "/var/log/nginx/" and "/var/cache/nginx/" becomes the directory. Waits
   // until every listen port accepts. Null (with nginx's error log on stderr)
   // when it fails. nginx writes its stdout and stderr to the directory, and
