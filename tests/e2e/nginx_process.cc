@@ -4,7 +4,6 @@
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
-#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +14,8 @@
 #include <regex>
 #include <sstream>
 #include <thread>
+
+#include "tests/e2e/child_process.h"
 
 namespace scallop::testing {
 namespace {
@@ -150,8 +151,7 @@ std::unique_ptr<NginxProcess> NginxProcess::Start(
     // processes do not: nginx has no such option for them).
     dup2(console, STDOUT_FILENO);
     dup2(console, STDERR_FILENO);
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() != parent) _exit(127);  // the test died before prctl
+    DieWithTheTest(parent);
     execl(NGINX_PATH, NGINX_PATH, "-p", prefix.c_str(), "-e", error_log.c_str(), "-c", conf.c_str(),
           static_cast<char*>(nullptr));
     _exit(127);

@@ -4,7 +4,6 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,6 +12,8 @@
 #include <iostream>
 #include <sstream>
 #include <thread>
+
+#include "tests/e2e/child_process.h"
 
 namespace scallop::testing {
 namespace {
@@ -64,10 +65,7 @@ std::unique_ptr<ScallopdProcess> ScallopdProcess::Start(
     dup2(out[1], STDOUT_FILENO);
     dup2(log_fd, STDERR_FILENO);
     close(out[0]);
-    // A test that dies without stopping it (an abort, a timeout's kill) must
-    // not leave a server running on.
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() != parent) _exit(127);
+    DieWithTheTest(parent);
     execv(argv[0], argv.data());
     _exit(127);
   }
