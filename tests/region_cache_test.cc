@@ -1,10 +1,13 @@
 // The region cache computes each region once, even when many threads want it
-// at the same moment, and stays within its byte budget.
+// at the same moment, stays within its byte budget, and its peeks (a server's
+// warm answers) see whole regions while other threads generate and evict.
 #include "scallop/plane/region_cache.h"
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <map>
+#include <optional>
 #include <string>
 #include <thread>
 #include <utility>
@@ -76,6 +79,67 @@ TEST(RegionCacheTest, StaysWithinItsByteBudget) {
     EXPECT_LE(engine.CacheStats().bytes, options.cache_bytes);
   }
   EXPECT_GT(engine.CacheStats().evictions, 0);
+}
+
+// A server answers warm calls from CachedRegions on its network threads while
+// its engine generates and evicts for cold calls. Two threads query random
+// tiles of a small pool through a cache that holds a few tiles' regions (so
+// regions are published and evicted all along) while two others peek at the
+// same tiles until the queries are done and each has found five tiles whole:
+// every region a peek returns must hold the points a lone engine generates for
+// its key. Under ThreadSanitizer (label "threads") this is the test that sees
+// PeekAll race with Publish and the eviction; without it, a torn region shows
+// as wrong points. Seed printed.
+TEST(RegionCacheTest, PeeksWhileOthersGenerateAndEvictSeeWholeRegions) {
+  const World world = ValidWorld({.seed = 4242});
+  const uint64_t seed = 20261127;
+  std::vector<Rect> tiles;
+  Rng rng(seed);
+  for (int k = 0; k < 6; ++k) {
+    const double x = rng.Uniform(-200, 200), y = rng.Uniform(-200, 200);
+    tiles.push_back({x, y, x + 40, y + 40});
+  }
+  std::map<std::pair<int64_t, int64_t>, std::vector<Vec2>> expected;
+  PlaneEngine lone(PlaneEngineOptions{.threads = 1});
+  for (const Rect& tile : tiles) {
+    const StatusOr<std::vector<RegionHandle>> regions = lone.Regions(world, tile);
+    ASSERT_TRUE(regions.ok());
+    for (const RegionHandle& region : *regions) {
+      expected[{region->key.i, region->key.j}] = region->points;
+    }
+  }
+
+  PlaneEngineOptions options;
+  options.threads = 2;
+  options.cache_bytes = 1 << 20;  // about 4 tiles' regions with their neighbours: not all 6
+  PlaneEngine shared(options);
+  std::atomic<int> queries_left{2}, wrong_regions{0};
+  std::vector<std::thread> threads;
+  for (uint64_t t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      Rng own(HashWords({seed, t}));
+      if (t < 2) {
+        for (int call = 0; call < 40; ++call) {
+          EXPECT_TRUE(shared.Points(world, tiles[own.Below(tiles.size())]).ok());
+        }
+        --queries_left;
+        return;
+      }
+      // The tiles last queried stay cached, so the loop ends once the queries have.
+      for (int found = 0; queries_left > 0 || found < 5;) {
+        const std::optional<std::vector<RegionHandle>> regions =
+            shared.CachedRegions(world, tiles[own.Below(tiles.size())]);
+        if (!regions) continue;
+        ++found;
+        for (const RegionHandle& region : *regions) {
+          wrong_regions += region->points != expected.at({region->key.i, region->key.j});
+        }
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  EXPECT_EQ(wrong_regions.load(), 0) << "seed " << seed;
+  EXPECT_GT(shared.CacheStats().evictions, 0) << "seed " << seed;
 }
 
 // PeekAll against a model of the cache (no eviction: a large budget): a map
