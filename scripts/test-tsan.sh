@@ -11,7 +11,8 @@
 # reactor armed on a request thread and destroyed in OnDone on a gRPC thread
 # looks like a race) and reports thousands of them, most inside libgrpc and
 # absl. A clean e2e run needs gRPC built with -fsanitize=thread
-# (docs/quality.md, "ThreadSanitizer").
+# (docs/quality.md, "ThreadSanitizer"). scripts/test.sh, and so CI, runs it
+# without E2E.
 #
 #   scripts/test-tsan.sh [BUILD_DIR]            (env: E2E=1, JOBS=2)
 set -euo pipefail

@@ -2,7 +2,8 @@
 # Installs what is missing, builds everything with warnings as errors, and runs
 # every test twice: in a Release build and under AddressSanitizer +
 # UndefinedBehaviorSanitizer; the golden tests also with Clang, at -O0 and on
-# aarch64 (scripts/test-portability.sh); then each fuzz target for 15 s.
+# aarch64 (scripts/test-portability.sh); the tests that run threads under
+# ThreadSanitizer (scripts/test-tsan.sh); then each fuzz target for 15 s.
 # Run from anywhere, as root on a fresh Debian 12.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,9 +25,13 @@ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSCALLO
 cmake --build build-sanitize -j"$jobs"
 ctest --test-dir build-sanitize --output-on-failure -j"$jobs"
 
+# ThreadSanitizer on the tests labelled "threads" (the region cache, the plane
+# engine's concurrent callers and schedules, the shared nearest lookup): it
+# builds only the core and those tests, about 4 minutes in all.
+JOBS=$jobs bash scripts/test-tsan.sh build-tsan
+
 # The libFuzzer targets, 15 s each from their corpora (docs/fuzzing.md).
-# Clang builds only them and what they link, with ASan and UBSan. The
-# ThreadSanitizer run is scripts/test-tsan.sh, outside CI for its time.
+# Clang builds only them and what they link, with ASan and UBSan.
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSCALLOP_WERROR=ON \
   -DCMAKE_CXX_COMPILER=clang++ -DSCALLOP_BUILD_FUZZERS=ON -DSCALLOP_BUILD_BENCH=OFF
 cmake --build build-fuzz -j"$jobs" --target fuzzers
