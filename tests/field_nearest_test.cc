@@ -3,15 +3,16 @@
 // doubled until the second nearest lies well inside it): random positions, positions on
 // region seams and corners and on points, for noise (ratios 4 and 16), raster and masked
 // raster worlds; the bounds maximality gives (F1 < min(r_max, R(p) / (1 - L)),
-// F1 + F2 < 2 r_max away from masks); the same bits in any order and with no cache; a
-// position deep inside a mask refused by name; a planted fault (a grid missing its
-// neighbours' points) caught by the comparison.
+// F1 + F2 < 2 r_max away from masks); the same bits in any order, with no cache and on two
+// threads; a position deep inside a mask refused by name; a planted fault (a grid missing
+// its neighbours' points) caught by the comparison.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -147,9 +148,11 @@ TEST(FieldNearestTest, MatchesBruteForceAcrossSeamsAndCorners) {
   }
 }
 
-// The answer does not depend on the order, the batching or the cache: reversed and one at a
-// time through a lookup that keeps no grid give the same bits; so does the brute-force method.
-TEST(FieldNearestTest, SameBitsWhateverTheOrderBatchingOrCache) {
+// The answer does not depend on the order, the batching, the cache or the threads: reversed
+// and one at a time through a lookup that keeps no grid give the same bits; so do the
+// brute-force method and two threads sharing a fresh lookup, each half the batch (scallopd's
+// calls share one; label "threads", so ThreadSanitizer watches the field grids' building).
+TEST(FieldNearestTest, SameBitsWhateverTheOrderBatchingCacheOrThreads) {
   const World world = field_test::PlaneWorld(FieldCase::kMaskedRaster, 7, 1.0, 4.0);
   PlaneEngine engine({});
   NearestLookup cached(engine);
@@ -166,6 +169,22 @@ TEST(FieldNearestTest, SameBitsWhateverTheOrderBatchingOrCache) {
     EXPECT_TRUE(SameNearest(all[n], one[0])) << n;
     EXPECT_TRUE(SameNearest(all[n], by_brute_force[n])) << n;
   }
+
+  PlaneEngine two_threads({.threads = 2});
+  NearestLookup shared(two_threads);
+  std::vector<NearestPoint> halves(positions.size());
+  const size_t middle = positions.size() / 2;
+  std::thread other([&] {
+    EXPECT_TRUE(
+        shared
+            .Nearest(world, std::span(positions).subspan(middle), std::span(halves).subspan(middle))
+            .ok());
+  });
+  EXPECT_TRUE(
+      shared.Nearest(world, std::span(positions).first(middle), std::span(halves).first(middle))
+          .ok());
+  other.join();
+  for (size_t k = 0; k < positions.size(); ++k) EXPECT_TRUE(SameNearest(all[k], halves[k])) << k;
 }
 
 // A noise image of a field world equals the lookup at the documented sample positions.
