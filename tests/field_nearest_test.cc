@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -172,18 +171,7 @@ TEST(FieldNearestTest, SameBitsWhateverTheOrderBatchingCacheOrThreads) {
 
   PlaneEngine two_threads({.threads = 2});
   NearestLookup shared(two_threads);
-  std::vector<NearestPoint> halves(positions.size());
-  const size_t middle = positions.size() / 2;
-  std::thread other([&] {
-    EXPECT_TRUE(
-        shared
-            .Nearest(world, std::span(positions).subspan(middle), std::span(halves).subspan(middle))
-            .ok());
-  });
-  EXPECT_TRUE(
-      shared.Nearest(world, std::span(positions).first(middle), std::span(halves).first(middle))
-          .ok());
-  other.join();
+  const std::vector<NearestPoint> halves = testing::NearestOnTwoThreads(shared, world, positions);
   for (size_t k = 0; k < positions.size(); ++k) EXPECT_TRUE(SameNearest(all[k], halves[k])) << k;
 }
 

@@ -11,7 +11,6 @@
 #include <iostream>
 #include <limits>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "scallop/plane/point_id.h"
@@ -254,18 +253,7 @@ TEST(NearestLookupTest, SameBitsWhateverTheOrderBatchingCacheOrThread) {
 
   // Two threads sharing a fresh lookup, each half the batch.
   NearestLookup shared(engine);
-  std::vector<NearestPoint> halves(positions.size());
-  const size_t middle = positions.size() / 2;
-  std::thread other([&] {
-    EXPECT_TRUE(
-        shared
-            .Nearest(world, std::span(positions).subspan(middle), std::span(halves).subspan(middle))
-            .ok());
-  });
-  EXPECT_TRUE(
-      shared.Nearest(world, std::span(positions).first(middle), std::span(halves).first(middle))
-          .ok());
-  other.join();
+  const std::vector<NearestPoint> halves = testing::NearestOnTwoThreads(shared, world, positions);
   for (size_t k = 0; k < positions.size(); ++k) EXPECT_TRUE(SameNearest(reference[k], halves[k]));
 }
 

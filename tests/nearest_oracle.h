@@ -1,7 +1,8 @@
 // The brute-force twin of NearestLookup for tests: every point of a 12 d
 // square about the position (from PlaneEngine::Points), sorted by
 // (squared distance, id). Slow and obviously right; on a maximal world the
-// two nearest always lie within 2 d, well inside the square.
+// two nearest always lie within 2 d, well inside the square. With the bitwise
+// comparison of two answers and a batch asked from two threads at once.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -9,6 +10,8 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <span>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -70,6 +73,22 @@ inline ::testing::AssertionResult SameNearest(const NearestPoint& expected,
          << std::hexfloat << "expected id " << expected.id << " (second " << expected.second_id
          << ") f1 " << expected.f1 << " f2 " << expected.f2 << "; got id " << actual.id
          << " (second " << actual.second_id << ") f1 " << actual.f1 << " f2 " << actual.f2;
+}
+
+// `lookup`'s answers for `positions` from two threads at once, each asking half the batch (as
+// scallopd's calls share one lookup); a failed call fails the test.
+inline std::vector<NearestPoint> NearestOnTwoThreads(NearestLookup& lookup, const World& world,
+                                                     std::span<const Vec2> positions) {
+  std::vector<NearestPoint> results(positions.size());
+  const size_t middle = positions.size() / 2;
+  std::thread other([&] {
+    EXPECT_TRUE(
+        lookup.Nearest(world, positions.subspan(middle), std::span(results).subspan(middle)).ok());
+  });
+  EXPECT_TRUE(
+      lookup.Nearest(world, positions.first(middle), std::span(results).first(middle)).ok());
+  other.join();
+  return results;
 }
 
 }  // namespace scallop::testing
