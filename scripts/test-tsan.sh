@@ -2,7 +2,8 @@
 # ThreadSanitizer on the tests that run threads (CTest label "threads":
 # region cache, plane determinism with concurrent callers, thread counts and
 # tilings, layered and radius-field worlds on engines of several threads,
-# nearest lookup shared by two threads). Builds only those (GCC, into
+# nearest lookups shared by two threads, scallopd's admission budget and rate
+# limiter under four). Builds only those (GCC, into
 # BUILD_DIR, default build-tsan) and fails on any report: each process writes
 # its reports to a folder checked at the end.
 #

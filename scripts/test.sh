@@ -27,8 +27,8 @@ ctest --test-dir build-sanitize --output-on-failure -j"$jobs"
 
 # ThreadSanitizer on the tests labelled "threads" (the region cache, the plane
 # engine's concurrent callers and schedules, layered and radius-field worlds on
-# several threads, the shared nearest lookup): it builds only the core and
-# those tests, about 4 minutes in all.
+# several threads, the shared nearest lookups, scallopd's client limits): it
+# builds only the core and those tests, about 4 minutes in all.
 JOBS=$jobs bash scripts/test-tsan.sh build-tsan
 
 # The libFuzzer targets, 15 s each from their corpora (docs/fuzzing.md).
