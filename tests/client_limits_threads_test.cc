@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "scallop/random/rng.h"
@@ -118,8 +121,7 @@ TEST(ClientLimitsThreadsTest, EachBucketGivesItsBurstOnceWhateverTheThreads) {
   int wrong = 0;
   for (int c = 0; c < clients; ++c) {
     int total = 0;
-    for (int t = 0; t < kThreads; ++t)
-      total += allowed[static_cast<size_t>(t)][static_cast<size_t>(c)];
+    for (const std::vector<int>& by_thread : allowed) total += by_thread[static_cast<size_t>(c)];
     wrong += total != burst;
   }
   EXPECT_EQ(wrong, 0) << "clients not given exactly their burst, seed " << seed;
