@@ -1,12 +1,12 @@
 // FieldPointGrid: the points of a radius-field run with their radii, filed in square cells so
 // that conflict tests and coverage certificates visit only the points near a spot.
 // Cells hold linked lists (head per cell, next per point): radii vary, so no fixed capacity fits.
-// Pack() copies the points filed so far into one array ordered by cell, so that a search reads a
-// cell's points from one run of memory rather than following a list across points(): a run's
+// Pack() copies the points filed so far into one array ordered by cell, row-major, so that a
+// search reads a row of its window as one run of memory, whatever the cells' counts (most
+// cells of a wide window are empty), rather than following lists across points(): a run's
 // points are placed in no spatial order, and walking the lists was a cache miss a point.
-// A bit per cell says whether it holds any point:
-// a search reads a row's bits at once and visits only the cells that hold points, so that it
-// pays no mispredicted branch per empty cell (most cells of a wide window are empty).
+// Points added after a Pack go to the lists; a bit per cell and a count per row say where
+// there are any, so that a row without them is read as its packed run alone.
 #pragma once
 
 #include <algorithm>
@@ -37,7 +37,8 @@ class FieldPointGrid {
         rows_(std::max<int64_t>(1, static_cast<int64_t>(std::ceil(area.Height() / cell)))),
         words_per_row_((columns_ + 63) / 64),
         head_(static_cast<size_t>(columns_ * rows_), -1),
-        occupied_(static_cast<size_t>(words_per_row_ * rows_), 0) {}
+        listed_(static_cast<size_t>(words_per_row_ * rows_), 0),
+        listed_in_row_(static_cast<size_t>(rows_), 0) {}
 
   void Add(Vec2 p, double r) {
     const int64_t col = Column(p.x);
@@ -45,7 +46,8 @@ class FieldPointGrid {
     const auto c = static_cast<size_t>(col + columns_ * row);
     next_.push_back(head_[c]);
     head_[c] = static_cast<int32_t>(points_.size());
-    occupied_[static_cast<size_t>(row * words_per_row_ + col / 64)] |= uint64_t{1} << (col % 64);
+    listed_[static_cast<size_t>(row * words_per_row_ + col / 64)] |= uint64_t{1} << (col % 64);
+    ++listed_in_row_[static_cast<size_t>(row)];
     points_.push_back({p, r});
   }
 
@@ -58,7 +60,13 @@ class FieldPointGrid {
   // through the cells' starts themselves, with no cell-sized copy to fault in at every Pack.
   void Pack() {
     const size_t cells = head_.size();
-    for (size_t k = packed_.size(); k < points_.size(); ++k) head_[CellOf(points_[k].p)] = -1;
+    for (size_t k = packed_.size(); k < points_.size(); ++k) {
+      const Vec2 p = points_[k].p;
+      const int64_t row = Row(p.y);
+      head_[static_cast<size_t>(Column(p.x) + columns_ * row)] = -1;
+      listed_[static_cast<size_t>(row * words_per_row_ + Column(p.x) / 64)] = 0;
+      listed_in_row_[static_cast<size_t>(row)] = 0;
+    }
     cell_start_.assign(cells + 1, 0);
     for (const FieldPoint& q : points_) ++cell_start_[CellOf(q.p) + 1];
     for (size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
@@ -76,21 +84,34 @@ class FieldPointGrid {
 
   // Calls visit(const FieldPoint&) (a reference into points() or into the packed copy) for every
   // point filed in a cell that meets the window (a superset of the points inside it), row by row
-  // from the bottom, each row by column; stops early when visit returns true, and returns whether
-  // it did. O(rows + cells holding points + points visited).
+  // from the bottom, each row by column, a cell's packed points in the order they were added and
+  // then its listed ones, newest first; stops early when visit returns true, and returns whether
+  // it did. The order is part of what the field sampler computes (the first conflicting point
+  // found is the one whose arc a refused try cuts). O(rows + points visited + listed cells).
   template <typename Visit>
   bool AnyNear(const Rect& window, Visit visit) const {
     const int64_t c0 = Column(window.x0);
     const int64_t c1 = Column(window.x1);
     const int64_t r0 = Row(window.y0);
     const int64_t r1 = Row(window.y1);
+    const bool packed = !cell_start_.empty();
     for (int64_t row = r0; row <= r1; ++row) {
-      for (int64_t first = c0; first <= c1; first += 64) {
-        const int64_t width = std::min<int64_t>(64, c1 - first + 1);
-        for (uint64_t bits = OccupiedBits(row, first, width); bits != 0; bits &= bits - 1) {
-          const int64_t col = first + std::countr_zero(bits);
-          if (VisitCell(col + columns_ * row, visit)) return true;
+      const int64_t base = columns_ * row;
+      // The row's packed points run from the start of cell c0 to the end of cell c1; each
+      // listed cell's lists go right after its packed points.
+      int32_t k = packed ? cell_start_[static_cast<size_t>(base + c0)] : 0;
+      if (listed_in_row_[static_cast<size_t>(row)] != 0) {
+        for (int64_t first = c0; first <= c1; first += 64) {
+          const int64_t width = std::min<int64_t>(64, c1 - first + 1);
+          for (uint64_t bits = ListedBits(row, first, width); bits != 0; bits &= bits - 1) {
+            const auto c = static_cast<size_t>(base + first + std::countr_zero(bits));
+            if (packed && VisitPacked(k, cell_start_[c + 1], visit)) return true;
+            if (VisitListed(c, visit)) return true;
+          }
         }
+      }
+      if (packed && VisitPacked(k, cell_start_[static_cast<size_t>(base + c1 + 1)], visit)) {
+        return true;
       }
     }
     return false;
@@ -118,9 +139,9 @@ class FieldPointGrid {
     return static_cast<int64_t>(std::clamp(v, 0.0, static_cast<double>(count - 1)));
   }
 
-  // Bits first .. first + width - 1 (width in [1, 64]) of the row's occupancy, bit 0 first's.
-  uint64_t OccupiedBits(int64_t row, int64_t first, int64_t width) const {
-    const uint64_t* words = occupied_.data() + row * words_per_row_;
+  // Bits first .. first + width - 1 (width in [1, 64]) of the row's listed cells, bit 0 first's.
+  uint64_t ListedBits(int64_t row, int64_t first, int64_t width) const {
+    const uint64_t* words = listed_.data() + row * words_per_row_;
     const int64_t w = first / 64;
     const int shift = static_cast<int>(first % 64);
     uint64_t bits = words[w] >> shift;
@@ -130,16 +151,20 @@ class FieldPointGrid {
 
   size_t CellOf(Vec2 p) const { return static_cast<size_t>(Column(p.x) + columns_ * Row(p.y)); }
 
+  // Visits cell c's listed points, newest first; true when visit stopped.
   template <typename Visit>
-  bool VisitCell(int64_t c, Visit& visit) const {
-    if (!cell_start_.empty()) {
-      const auto cell = static_cast<size_t>(c);
-      for (int32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-        if (visit(packed_[static_cast<size_t>(k)])) return true;
-      }
+  bool VisitListed(size_t c, Visit& visit) const {
+    for (int32_t j = head_[c]; j >= 0; j = next_[static_cast<size_t>(j)]) {
+      if (visit(points_[static_cast<size_t>(j)])) return true;
     }
-    for (int32_t k = head_[static_cast<size_t>(c)]; k >= 0; k = next_[static_cast<size_t>(k)]) {
-      if (visit(points_[static_cast<size_t>(k)])) return true;
+    return false;
+  }
+
+  // Visits packed_[k, end), k moved past each point visited; true when visit stopped.
+  template <typename Visit>
+  bool VisitPacked(int32_t& k, int32_t end, Visit& visit) const {
+    for (; k < end; ++k) {
+      if (visit(packed_[static_cast<size_t>(k)])) return true;
     }
     return false;
   }
@@ -150,8 +175,11 @@ class FieldPointGrid {
   int64_t rows_;
   int64_t words_per_row_;
   std::vector<int32_t> head_;
-  std::vector<uint64_t> occupied_;  // bit col % 64 of word row * words_per_row_ + col / 64
-  std::vector<int32_t> next_;       // per point: the next listed point of its cell, or -1
+  // Cells with listed points (added since the last Pack): bit col % 64 of word
+  // row * words_per_row_ + col / 64; and how many a row holds.
+  std::vector<uint64_t> listed_;
+  std::vector<int32_t> listed_in_row_;
+  std::vector<int32_t> next_;  // per point: the next listed point of its cell, or -1
   std::vector<FieldPoint> points_;
   // After Pack(): the packed points of cell c are packed_[cell_start_[c], cell_start_[c + 1]).
   std::vector<int32_t> cell_start_;

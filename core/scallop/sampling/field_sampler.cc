@@ -431,8 +431,9 @@ class FieldRun {
       const double m = std::max(q.r, r_low);
       return (dx * dx + dy * dy) * (1.0 + 1e-9) < m * m;
     };
-    for (size_t k = 0; k < hint_count_; ++k) {
-      if (covers(hints_[k])) return true;
+    // Newest first: the cell just certified is the likeliest neighbour of this one.
+    for (size_t j = 1; j <= hint_count_; ++j) {
+      if (covers(hints_[(next_hint_ + kSweepHints - j) % kSweepHints])) return true;
     }
     const auto remember = [&](const FieldPoint& q) {
       if (!covers(q)) return false;
