@@ -1,6 +1,6 @@
 // A3 worlds' density against the regions (docs/quality.md, "What remains"):
 // what a generator version that removes A3's seam effects must flatten, and
-// the check that sees them. Over WORLDS worlds (d = 1, regions 16 d), in the
+// a measure that sees them. Over WORLDS worlds (d = 1, regions 16 d), in the
 // block [0, 96)^2 of each (6 x 6 regions, every rank):
 //   seam     points per d^2 by signed distance to the nearest seam, in 0.5 d
 //            bins from -8 d to 8 d (the middle of a region), positive into
@@ -29,7 +29,7 @@ using scallop::RegionKey;
 using scallop::RegionRank;
 using scallop::Vec2;
 
-constexpr double kRegionSide = 16.0;
+constexpr double kRegionSide = scallop::kRegionSideInD;  // d = 1
 constexpr double kBlock = 96.0;
 constexpr int kSeamBins = 32;  // 0.5 d each over [-8, 8)
 constexpr int kRings = 8;      // 1 d each over [0, 8)
