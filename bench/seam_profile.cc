@@ -27,6 +27,7 @@
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/region_layout.h"
 #include "scallop/plane/world.h"
+#include "tests/seed_statistics.h"
 
 namespace {
 
@@ -39,23 +40,18 @@ constexpr int kSeamBins = 32;  // over [-side / 2, side / 2)
 constexpr int kRings = 8;      // over [0, side / 2)
 constexpr int kBlockRegions = 6;
 
-// One bin's density in every world, less that world's mean density.
+// One bin's density in every world, and less that world's mean density.
 struct Bin {
-  double density_sum = 0.0;
-  std::vector<double> excess;
-  void Add(double density, double world_density) {
-    density_sum += density;
-    excess.push_back(density - world_density);
+  std::vector<double> density, excess;
+  void Add(double bin_density, double world_density) {
+    density.push_back(bin_density);
+    excess.push_back(bin_density - world_density);
   }
-  double Density() const { return density_sum / static_cast<double>(excess.size()); }
+  double Density() const { return scallop::Mean(density); }
   // The mean excess in standard errors of the mean.
   double Z() const {
-    const auto n = static_cast<double>(excess.size());
-    double mean = 0.0, square = 0.0;
-    for (double e : excess) mean += e / n;
-    for (double e : excess) square += (e - mean) * (e - mean);
-    const double error = std::sqrt(square / (n - 1) / n);
-    return error > 0.0 ? mean / error : 0.0;
+    const double error = scallop::Spread(excess) / std::sqrt(static_cast<double>(excess.size()));
+    return error > 0.0 ? scallop::Mean(excess) / error : 0.0;
   }
 };
 
@@ -141,7 +137,7 @@ int main(int argc, char** argv) {
       if (ring < kRings) ring_sums[static_cast<int>(ring)] += weight;
     }
     const double seam_bin_area = 2 * (kBlockRegions - 1) * block * side / kSeamBins;  // both axes
-    const double rank_zero_centres = kBlockRegions / 2 * kBlockRegions / 2;
+    const double rank_zero_centres = (kBlockRegions / 2) * (kBlockRegions / 2);
     const double ring_width = side / (2 * kRings);
     const double world_density = total / (block * block);
     density_sum += world_density;
