@@ -7,7 +7,10 @@
 // nearest a rank-0 centre), against rings about typical points (9 a world, drawn at random among
 // its points at least a region from the block's edge).
 //
-// Usage: seam_profile [worlds=200] [first seed=0xa3000] [noise field ratio]
+// With "forest" instead of a ratio: the forest of docs/quality.md's "Layered worlds" (trees 8,
+// bushes 3, rocks 1.5), a profile for each layer, in its own regions and d.
+//
+// Usage: seam_profile [worlds=200] [first seed=0xa3000] [noise field ratio | forest]
 #include "tests/seam_profile.h"
 
 #include <cmath>
@@ -16,11 +19,14 @@
 #include <cstdlib>
 #include <numbers>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/region_layout.h"
+#include "scallop/plane/world_layers.h"
 #include "scallop/random/rng.h"
 
 namespace {
@@ -78,66 +84,101 @@ std::vector<Vec2> TypicalPoints(const std::vector<Vec2>& points, const SeamProfi
   return typical;
 }
 
+// One profile over the worlds `make_world` gives for seeds first_seed, first_seed + 1, ...: of each
+// world, or with `layer` >= 0 of that layer of each (layered) world.
+struct Measured {
+  std::optional<SeamProfile> profile;
+  RingsAbout about_seeds, about_typical;
+};
+
+template <typename MakeWorld>
+bool Measure(scallop::PlaneEngine& engine, int worlds, uint64_t first_seed, MakeWorld make_world,
+             int layer, Measured& measured) {
+  scallop::Rng rng(first_seed);
+  for (int k = 0; k < worlds; ++k) {
+    const scallop::World world = make_world(first_seed + static_cast<uint64_t>(k));
+    const scallop::World& own = layer >= 0 ? world.layers()->world(layer) : world;
+    if (!measured.profile) measured.profile.emplace(scallop::RegionLayout(own).side());
+    const SeamProfile& profile = *measured.profile;
+    const double block = profile.block();
+    const auto points =
+        engine.Points(world, {0, 0, block, block},
+                      layer >= 0 ? scallop::LayerMask{1u} << layer : scallop::kAllLayers);
+    if (!points.ok()) {
+      std::fprintf(stderr, "%s\n", points.status().message().c_str());
+      return false;
+    }
+    measured.profile->AddWorld(points->positions, own);
+    std::vector<double> weight;
+    for (const Vec2& p : points->positions) weight.push_back(SeamProfile::Weight(own, p));
+    const double width = profile.RingFrom(1);
+    measured.about_seeds.Add(points->positions, weight, Seeds(points->positions, profile), width);
+    measured.about_typical.Add(points->positions, weight,
+                               TypicalPoints(points->positions, profile, rng), width);
+  }
+  return true;
+}
+
+// Distances in `unit` (d or r_max), densities in points per spacing^2.
+void Print(const Measured& measured, const char* what, int worlds, uint64_t first_seed, double unit,
+           const char* unit_name) {
+  const SeamProfile& profile = *measured.profile;
+  std::printf(
+      "%d %s from seed %#llx, regions %g %s, blocks of %d x %d regions: %.4f points per %s\n",
+      worlds, what, static_cast<unsigned long long>(first_seed), profile.side() / unit, unit_name,
+      SeamProfile::kBlockRegions, SeamProfile::kBlockRegions, profile.MeanDensity(),
+      unit_name[0] == 'd' ? "d^2" : "R^2");
+  std::printf("seam (from, %s; density; z):", unit_name);
+  for (int b = 0; b < SeamProfile::kSeamBins; ++b) {
+    const SeamProfile::Bin& bin = profile.seam()[b];
+    std::printf(" %+.2f:%.3f:%+.1f", profile.SeamBinFrom(b) / unit, bin.Density(), bin.Z());
+  }
+  std::printf("\nrank 0 (ring from, %s; density; z):", unit_name);
+  for (int r = 0; r < SeamProfile::kRings; ++r) {
+    const SeamProfile::Bin& ring = profile.rings()[r];
+    std::printf(" %.2f:%.3f:%+.1f", profile.RingFrom(r) / unit, ring.Density(), ring.Z());
+  }
+  for (const auto& [name, rings] : {std::pair{"the seeds", &measured.about_seeds},
+                                    std::pair{"typical points", &measured.about_typical}}) {
+    std::printf("\nabout %s (ring from, %s; density):", name, unit_name);
+    for (int r = 0; r < SeamProfile::kRings; ++r) {
+      std::printf(" %.2f:%.3f", profile.RingFrom(r) / unit, rings->Density(r, profile.RingFrom(1)));
+    }
+  }
+  std::printf("\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const int worlds = argc > 1 ? std::atoi(argv[1]) : 200;
   const uint64_t first_seed = argc > 2 ? std::strtoull(argv[2], nullptr, 0) : 0xa3000;
-  const double ratio = argc > 3 ? std::atof(argv[3]) : 1.0;
+  const bool forest = argc > 3 && std::string_view(argv[3]) == "forest";
+  const double ratio = argc > 3 && !forest ? std::atof(argv[3]) : 1.0;
   if (worlds < 2 || !(ratio >= 1.0)) {
-    std::fprintf(stderr, "usage: %s [worlds >= 2] [first seed] [noise field ratio > 1]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s [worlds >= 2] [first seed] [noise field ratio > 1 | forest]\n",
+                 argv[0]);
     return 2;
   }
-  // The spacing unit the distances are printed in: d, or r_max for a field.
-  const double unit = ratio > 1.0 ? ratio : 1.0;
-  const char* unit_name = ratio > 1.0 ? "r_max" : "d";
   scallop::PlaneEngine engine(scallop::PlaneEngineOptions{.threads = 1});
-  std::optional<SeamProfile> profile;
-  RingsAbout about_seeds, about_typical;
-  scallop::Rng rng(first_seed);
-  for (int k = 0; k < worlds; ++k) {
-    const auto world = scallop::SeamProfileWorld(first_seed + static_cast<uint64_t>(k), ratio);
-    if (!profile) profile.emplace(scallop::RegionLayout(*world).side());
-    const double block = profile->block();
-    const auto points = engine.Points(*world, {0, 0, block, block});
-    if (!points.ok()) {
-      std::fprintf(stderr, "%s\n", points.status().message().c_str());
-      return 1;
+  if (forest) {
+    const scallop::World first = *scallop::SeamProfileForest(first_seed);
+    for (int layer = 0; layer < first.layers()->count(); ++layer) {
+      Measured measured;
+      const auto make_world = [](uint64_t seed) { return *scallop::SeamProfileForest(seed); };
+      if (!Measure(engine, worlds, first_seed, make_world, layer, measured)) return 1;
+      const std::string what = "forests' " + first.layers()->name(layer);
+      Print(measured, what.c_str(), worlds, first_seed, first.layers()->world(layer).min_distance(),
+            "d");
     }
-    profile->AddWorld(points->positions, world->radius_field());
-    std::vector<double> weight;
-    for (const Vec2& p : points->positions) {
-      const double r = world->radius_field() ? world->radius_field()->Evaluate(p) : 1.0;
-      weight.push_back(r * r);
-    }
-    const double width = profile->RingFrom(1);
-    about_seeds.Add(points->positions, weight, Seeds(points->positions, *profile), width);
-    about_typical.Add(points->positions, weight, TypicalPoints(points->positions, *profile, rng),
-                      width);
+    return 0;
   }
-  std::printf("%d %s worlds from seed %#llx, regions %g %s, blocks of %d x %d regions: %.4f %s\n",
-              worlds, ratio > 1.0 ? "noise-field" : "A3",
-              static_cast<unsigned long long>(first_seed), profile->side() / unit, unit_name,
-              SeamProfile::kBlockRegions, SeamProfile::kBlockRegions, profile->MeanDensity(),
-              ratio > 1.0 ? "points a unit area, each counting R^2" : "points per d^2");
-  std::printf("seam (from, %s; density; z):", unit_name);
-  for (int b = 0; b < SeamProfile::kSeamBins; ++b) {
-    const SeamProfile::Bin& bin = profile->seam()[b];
-    std::printf(" %+.2f:%.3f:%+.1f", profile->SeamBinFrom(b) / unit, bin.Density(), bin.Z());
-  }
-  std::printf("\nrank 0 (ring from, %s; density; z):", unit_name);
-  for (int r = 0; r < SeamProfile::kRings; ++r) {
-    const SeamProfile::Bin& ring = profile->rings()[r];
-    std::printf(" %.2f:%.3f:%+.1f", profile->RingFrom(r) / unit, ring.Density(), ring.Z());
-  }
-  for (const auto& [name, rings] :
-       {std::pair{"the seeds", &about_seeds}, std::pair{"typical points", &about_typical}}) {
-    std::printf("\nabout %s (ring from, %s; density):", name, unit_name);
-    for (int r = 0; r < SeamProfile::kRings; ++r) {
-      std::printf(" %.2f:%.3f", profile->RingFrom(r) / unit,
-                  rings->Density(r, profile->RingFrom(1)));
-    }
-  }
-  std::printf("\n");
+  Measured measured;
+  const auto make_world = [ratio](uint64_t seed) {
+    return *scallop::SeamProfileWorld(seed, ratio);
+  };
+  if (!Measure(engine, worlds, first_seed, make_world, -1, measured)) return 1;
+  Print(measured, ratio > 1.0 ? "noise-field worlds" : "A3 worlds", worlds, first_seed,
+        ratio > 1.0 ? ratio : 1.0, ratio > 1.0 ? "r_max" : "d");
   return 0;
 }

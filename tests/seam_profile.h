@@ -1,15 +1,15 @@
 // A world's density against its regions' layout (docs/quality.md, "The whole profile" under
-// Seams, and "Across seams" under Radius fields), over many worlds: what a generator version that
-// removes the seam effects must flatten. Measured in the block of 6 x 6 regions from the origin
-// (every rank):
+// Seams, "Across seams" under Radius fields and under Layered worlds), over many worlds: what a
+// generator version that removes the seam effects must flatten. Measured in the block of 6 x 6
+// regions from the origin (every rank):
 //   seam    density by signed distance to the nearest seam, in bins of 1/32 of a region's side,
 //           out to the middle of a region, positive into the higher-ranked of the two regions
 //           the seam parts;
 //   rank 0  density by distance to the centre of a rank-0 region (where its run grows from one
 //           point), in rings of 1/16 of a side.
-// In a radius-field world a point counts R(p)^2, so that the density is flat wherever the
-// spacing changes. bench/seam_profile prints it; tests/seam_profile_test.cc holds it to the
-// current generator's.
+// A point counts its spacing squared (R(p)^2 in a radius-field world), so that the density is in
+// points per spacing^2 and flat wherever the spacing changes. bench/seam_profile prints it;
+// tests/seam_profile_test.cc holds it to the current generator's.
 #pragma once
 
 #include <algorithm>
@@ -39,6 +39,16 @@ inline StatusOr<World> SeamProfileWorld(uint64_t seed, double ratio) {
   field.frequency = 0.9 * kMaxFieldSlope /
                     ((ratio - 1.0) * FractalValueNoiseSlope(1.0, field.octaves, field.gain));
   return World::Create({.seed = seed, .radius_field = field});
+}
+
+// The forest of docs/quality.md's "Layered worlds" with seed `seed`: trees 8, bushes 3, rocks 1.5,
+// default D.
+inline StatusOr<World> SeamProfileForest(uint64_t seed) {
+  WorldSpec spec{.seed = seed};
+  spec.layers = {{.name = "trees", .min_distance = 8},
+                 {.name = "bushes", .min_distance = 3},
+                 {.name = "rocks", .min_distance = 1.5}};
+  return World::Create(spec);
 }
 
 class SeamProfile {
@@ -76,12 +86,20 @@ class SeamProfile {
   double SeamBinFrom(int b) const { return (b - kSeamBins / 2) * side_ / kSeamBins; }
   double RingFrom(int r) const { return r * side_ / (2 * kRings); }
 
-  // One world's points in [0, block())^2; `field` is its radius field, or null.
-  void AddWorld(const std::vector<Vec2>& positions, const RadiusField* field) {
+  // A point's weight in `world` (the world the points are of, or a layer's world): its spacing
+  // squared, R(p)^2 or d^2, so that densities are in points per spacing^2.
+  static double Weight(const World& world, Vec2 p) {
+    const double r =
+        world.radius_field() ? world.radius_field()->Evaluate(p) : world.min_distance();
+    return r * r;
+  }
+
+  // One world's points in [0, block())^2.
+  void AddWorld(const std::vector<Vec2>& positions, const World& world) {
     std::vector<double> seam_sums(kSeamBins), ring_sums(kRings);
     double total = 0.0;
     for (const Vec2& p : positions) {
-      const double r = field != nullptr ? field->Evaluate(p) : 1.0, weight = r * r;
+      const double weight = Weight(world, p);
       total += weight;
       for (int axis = 0; axis < 2; ++axis) {
         const double t = SignedSeamDistance(p, axis);

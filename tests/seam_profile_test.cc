@@ -4,7 +4,8 @@
 // pinned below, give or take four standard errors of the bin. The pins record what version 4
 // leaves (the wall 6 to 7 d into the higher-ranked region, the sparse middle of a region whose
 // sides ran first, the seed cores): a version that removes those effects passes and re-pins them
-// tighter; one that makes any bin worse fails. The worlds are fixed, so the test cannot flake.
+// tighter; one that makes any bin worse fails. A3 worlds, noise-field worlds and the forest's
+// later layers, each in its own regions. The worlds are fixed, so the test cannot flake.
 #include "tests/seam_profile.h"
 
 #include <gtest/gtest.h>
@@ -18,6 +19,7 @@
 
 #include "scallop/plane/plane_engine.h"
 #include "scallop/plane/region_layout.h"
+#include "scallop/plane/world_layers.h"
 
 namespace scallop {
 namespace {
@@ -29,27 +31,37 @@ constexpr double kMaxZ = 4.0;
 using SeamPins = std::array<double, SeamProfile::kSeamBins>;
 using RingPins = std::array<double, SeamProfile::kRings>;
 
-// The profile's worlds' points, one block of 6 x 6 regions each.
+// The profile's worlds' points, one block of 6 x 6 regions each: of each world, or of one layer
+// of each. `worlds` are the worlds the points are of (a layer's own world).
 struct Worlds {
   std::vector<World> worlds;
   std::vector<std::vector<Vec2>> points;
   double side = 0.0;
 };
 
-Worlds MakeWorlds(int count, uint64_t first_seed, double ratio) {
+// With `layer` >= 0, that layer of each (layered) world.
+template <typename MakeWorld>
+Worlds MakeWorlds(int count, uint64_t first_seed, MakeWorld make_world, int layer = -1) {
   PlaneEngine engine(PlaneEngineOptions{.threads = 1});
   Worlds made;
   for (int k = 0; k < count; ++k) {
-    StatusOr<World> world = SeamProfileWorld(first_seed + static_cast<uint64_t>(k), ratio);
+    StatusOr<World> world = make_world(first_seed + static_cast<uint64_t>(k));
     EXPECT_TRUE(world.ok()) << world.status().message();
-    made.side = RegionLayout(*world).side();
+    const World& own = layer >= 0 ? world->layers()->world(layer) : *world;
+    made.side = RegionLayout(own).side();
     const double block = SeamProfile::kBlockRegions * made.side;
-    StatusOr<PlanePoints> points = engine.Points(*world, {0, 0, block, block});
+    StatusOr<PlanePoints> points = engine.Points(*world, {0, 0, block, block},
+                                                 layer >= 0 ? LayerMask{1} << layer : kAllLayers);
     EXPECT_TRUE(points.ok()) << points.status().message();
-    made.worlds.push_back(*world);
+    made.worlds.push_back(own);
     made.points.push_back(points->positions);
   }
   return made;
+}
+
+Worlds MakeWorlds(int count, uint64_t first_seed, double ratio) {
+  return MakeWorlds(count, first_seed,
+                    [ratio](uint64_t seed) { return SeamProfileWorld(seed, ratio); });
 }
 
 // `keep` decides, from a point's place in the profile and its index in its world, whether a
@@ -62,7 +74,7 @@ SeamProfile Measure(const Worlds& worlds, Keep keep) {
     for (size_t i = 0; i < worlds.points[k].size(); ++i) {
       if (keep(profile, worlds.points[k][i], i)) kept.push_back(worlds.points[k][i]);
     }
-    profile.AddWorld(kept, worlds.worlds[k].radius_field());
+    profile.AddWorld(kept, worlds.worlds[k]);
   }
   return profile;
 }
@@ -149,9 +161,12 @@ void ExpectPlantedDefectsCaught(const Worlds& worlds, const SeamPins& seam_pins,
 // A3 worlds of d = 1: bins of d / 2 from -8 d, rings of d.
 TEST(SeamProfileTest, A3WorldsAreNoWorseThanVersion4) {
   const Worlds worlds = MakeWorlds(100, 0xa3000, 1.0);
-  const SeamPins seam_pins = {-1.2, 2.5, -6.4, 8.0,  -0.2, 1.3,  0.4,  0.9,   0.4,  0.9,  0.2,
-                              0.1,  0.6, 0.5,  -0.0, 0.3,  -0.0, 0.2,  0.2,   -0.1, 0.5,  -0.1,
-                              0.6,  0.1, 0.6,  -0.3, 1.9,  -4.3, 38.1, -38.3, 9.1,  -16.8};
+  // A row for each side of the seam.
+  // clang-format off
+  const SeamPins seam_pins = {
+      -1.2, 2.5, -6.4, 8.0, -0.2, 1.3, 0.4, 0.9, 0.4, 0.9, 0.2, 0.1, 0.6, 0.5, -0.0, 0.3,
+      -0.0, 0.2, 0.2, -0.1, 0.5, -0.1, 0.6, 0.1, 0.6, -0.3, 1.9, -4.3, 38.1, -38.3, 9.1, -16.8};
+  // clang-format on
   const RingPins ring_pins = {14.4, 5.2, 3.6, 1.9, 2.2, 1.4, 1.6, 1.1};
   ExpectNoWorse(Measure(worlds), seam_pins, ring_pins);
   ExpectPlantedDefectsCaught(worlds, seam_pins, ring_pins);
@@ -161,12 +176,45 @@ TEST(SeamProfileTest, A3WorldsAreNoWorseThanVersion4) {
 // 0.375 r_max.
 TEST(SeamProfileTest, FieldWorldsAreNoWorseThanVersion4) {
   const Worlds worlds = MakeWorlds(100, 0xf000, 2.0);
-  const SeamPins seam_pins = {0.4, 3.7, 1.3, 0.6,  -0.7, 2.1,  0.2,   2.4,  -0.2, 1.8, 1.8,
-                              0.5, 0.8, 1.8, -0.4, 0.7,  1.9,  2.2,   -0.3, 1.9,  2.8, 2.4,
-                              3.5, 3.9, 3.6, 0.8,  -4.2, -0.8, -13.8, -5.9, -6.6, -8.4};
+  // A row for each side of the seam.
+  // clang-format off
+  const SeamPins seam_pins = {
+      0.4, 3.7, 1.3, 0.6, -0.7, 2.1, 0.2, 2.4, -0.2, 1.8, 1.8, 0.5, 0.8, 1.8, -0.4, 0.7,
+      1.9, 2.2, -0.3, 1.9, 2.8, 2.4, 3.5, 3.9, 3.6, 0.8, -4.2, -0.8, -13.8, -5.9, -6.6, -8.4};
+  // clang-format on
   const RingPins ring_pins = {30.1, 10.4, 7.2, 3.7, 2.0, 4.0, 2.2, 3.0};
   ExpectNoWorse(Measure(worlds), seam_pins, ring_pins);
   ExpectPlantedDefectsCaught(worlds, seam_pins, ring_pins);
+}
+
+// The forest's later layers (each an A3 world of its own d with the earlier layers' disks cut
+// out; its trees are the plain A3 world of d = 8, held above): bushes (d = 3) and rocks (1.5).
+TEST(SeamProfileTest, ForestLayersAreNoWorseThanVersion4) {
+  struct Layer {
+    int number;
+    const char* name;
+    SeamPins seam_pins;
+    RingPins ring_pins;
+  };
+  // A row for each side of the seam.
+  // clang-format off
+  const Layer layers[] = {
+      {1, "bushes",
+       {-0.4, 1.6, -5.6, 7.1, 0.2, 1.6, -0.9, -1.0, 1.1, 1.9, 1.0, -0.3, 0.3, 1.2, 1.2, 0.6,
+        0.5, 0.9, 0.6, -0.6, -0.6, 0.5, 2.2, 0.3, -1.2, -1.3, 1.5, -2.6, 34.0, -35.4, 7.2, -14.5},
+       {6.1, 3.8, 3.1, 1.4, 2.1, 1.3, 0.7, 2.0}},
+      {2, "rocks",
+       {-1.0, 0.7, -3.7, 4.5, 1.2, 0.8, 0.9, 0.5, 0.3, -1.2, 2.0, 2.4, -1.6, 1.0, 0.8, 0.3,
+        0.9, 0.5, 0.3, -0.4, 1.3, 0.4, -1.5, -0.2, 0.5, 0.4, 0.7, 0.6, 29.4, -31.3, 4.0, -13.8},
+       {7.3, 5.2, 2.5, 1.3, 1.8, 1.5, 1.4, 1.2}},
+  };
+  // clang-format on
+  for (const Layer& layer : layers) {
+    SCOPED_TRACE(layer.name);
+    const Worlds worlds = MakeWorlds(60, 1, SeamProfileForest, layer.number);
+    ExpectNoWorse(Measure(worlds), layer.seam_pins, layer.ring_pins);
+    ExpectPlantedDefectsCaught(worlds, layer.seam_pins, layer.ring_pins);
+  }
 }
 
 }  // namespace
