@@ -1,5 +1,6 @@
-// Worlds' density against their regions (docs/quality.md, "The whole profile" under Seams, and
-// "Across seams" under Radius fields), as tests/seam_profile.h measures it, over WORLDS worlds:
+// Worlds' density against their regions (docs/quality.md, "The whole profile" under Seams,
+// "Across seams" under Radius fields and Layered worlds), as tests/seam_profile.h measures it,
+// over WORLDS worlds:
 // A3 worlds of d = 1 (regions 16 d: bins of d / 2, rings of d), or with RATIO noise-field worlds
 // over [1, RATIO] at 90% of the slope bound (regions 6 r_max). Each bin is also given as z: the
 // mean over the worlds of the bin's density less the world's own, in standard errors of that
@@ -53,7 +54,8 @@ struct RingsAbout {
   }
 };
 
-// The point nearest each rank-0 centre of the block: the seed its run grew from.
+// The point nearest each rank-0 centre of the block: the seed its run grew from (in a later layer,
+// unless the seed fell in an earlier layer's disk and was dropped).
 std::vector<Vec2> Seeds(const std::vector<Vec2>& points, const SeamProfile& profile) {
   std::vector<Vec2> seeds;
   for (int a = 0; a < SeamProfile::kBlockRegions / 2; ++a) {
@@ -84,13 +86,13 @@ std::vector<Vec2> TypicalPoints(const std::vector<Vec2>& points, const SeamProfi
   return typical;
 }
 
-// One profile over the worlds `make_world` gives for seeds first_seed, first_seed + 1, ...: of each
-// world, or with `layer` >= 0 of that layer of each (layered) world.
 struct Measured {
   std::optional<SeamProfile> profile;
   RingsAbout about_seeds, about_typical;
 };
 
+// One profile over the worlds `make_world` gives for seeds first_seed, first_seed + 1, ...: of each
+// world, or with `layer` >= 0 of that layer of each (layered) world.
 template <typename MakeWorld>
 bool Measure(scallop::PlaneEngine& engine, int worlds, uint64_t first_seed, MakeWorld make_world,
              int layer, Measured& measured) {
@@ -119,15 +121,15 @@ bool Measure(scallop::PlaneEngine& engine, int worlds, uint64_t first_seed, Make
   return true;
 }
 
-// Distances in `unit` (d or r_max), densities in points per spacing^2.
+// Distances in `unit` (d or r_max, named `unit_name`), densities in points per `per`: a point
+// counts its spacing squared (d^2 or R^2).
 void Print(const Measured& measured, const char* what, int worlds, uint64_t first_seed, double unit,
-           const char* unit_name) {
+           const char* unit_name, const char* per) {
   const SeamProfile& profile = *measured.profile;
   std::printf(
       "%d %s from seed %#llx, regions %g %s, blocks of %d x %d regions: %.4f points per %s\n",
       worlds, what, static_cast<unsigned long long>(first_seed), profile.side() / unit, unit_name,
-      SeamProfile::kBlockRegions, SeamProfile::kBlockRegions, profile.MeanDensity(),
-      unit_name[0] == 'd' ? "d^2" : "R^2");
+      SeamProfile::kBlockRegions, SeamProfile::kBlockRegions, profile.MeanDensity(), per);
   std::printf("seam (from, %s; density; z):", unit_name);
   for (int b = 0; b < SeamProfile::kSeamBins; ++b) {
     const SeamProfile::Bin& bin = profile.seam()[b];
@@ -169,7 +171,7 @@ int main(int argc, char** argv) {
       if (!Measure(engine, worlds, first_seed, make_world, layer, measured)) return 1;
       const std::string what = "forests' " + first.layers()->name(layer);
       Print(measured, what.c_str(), worlds, first_seed, first.layers()->world(layer).min_distance(),
-            "d");
+            "d", "d^2");
     }
     return 0;
   }
@@ -179,6 +181,6 @@ int main(int argc, char** argv) {
   };
   if (!Measure(engine, worlds, first_seed, make_world, -1, measured)) return 1;
   Print(measured, ratio > 1.0 ? "noise-field worlds" : "A3 worlds", worlds, first_seed,
-        ratio > 1.0 ? ratio : 1.0, ratio > 1.0 ? "r_max" : "d");
+        ratio > 1.0 ? ratio : 1.0, ratio > 1.0 ? "r_max" : "d", ratio > 1.0 ? "R^2" : "d^2");
   return 0;
 }

@@ -46,13 +46,19 @@ Worlds MakeWorlds(int count, uint64_t first_seed, MakeWorld make_world, int laye
   Worlds made;
   for (int k = 0; k < count; ++k) {
     StatusOr<World> world = make_world(first_seed + static_cast<uint64_t>(k));
-    EXPECT_TRUE(world.ok()) << world.status().message();
+    if (!world.ok()) {
+      ADD_FAILURE() << world.status().message();
+      return made;
+    }
     const World& own = layer >= 0 ? world->layers()->world(layer) : *world;
     made.side = RegionLayout(own).side();
     const double block = SeamProfile::kBlockRegions * made.side;
     StatusOr<PlanePoints> points = engine.Points(*world, {0, 0, block, block},
                                                  layer >= 0 ? LayerMask{1} << layer : kAllLayers);
-    EXPECT_TRUE(points.ok()) << points.status().message();
+    if (!points.ok()) {
+      ADD_FAILURE() << points.status().message();
+      return made;
+    }
     made.worlds.push_back(own);
     made.points.push_back(points->positions);
   }
