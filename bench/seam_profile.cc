@@ -9,9 +9,10 @@
 // its points at least a region from the block's edge).
 //
 // With "forest" instead of a ratio: the forest of docs/quality.md's "Layered worlds" (trees 8,
-// bushes 3, rocks 1.5), a profile for each layer, in its own regions and d.
+// bushes 3, rocks 1.5), a profile for each layer, in its own regions and d; with "a1:DENSITY" or
+// "a2:DENSITY", A1 or A2 worlds of d = 1 at that density.
 //
-// Usage: seam_profile [worlds=200] [first seed=0xa3000] [noise field ratio | forest]
+// Usage: seam_profile [worlds=200] [first seed=0xa3000] [ratio | forest | a1:DENSITY | a2:DENSITY]
 #include "tests/seam_profile.h"
 
 #include <cmath>
@@ -155,10 +156,16 @@ void Print(const Measured& measured, const char* what, int worlds, uint64_t firs
 int main(int argc, char** argv) {
   const int worlds = argc > 1 ? std::atoi(argv[1]) : 200;
   const uint64_t first_seed = argc > 2 ? std::strtoull(argv[2], nullptr, 0) : 0xa3000;
-  const bool forest = argc > 3 && std::string_view(argv[3]) == "forest";
-  const double ratio = argc > 3 && !forest ? std::atof(argv[3]) : 1.0;
-  if (worlds < 2 || !(ratio >= 1.0)) {
-    std::fprintf(stderr, "usage: %s [worlds >= 2] [first seed] [noise field ratio > 1 | forest]\n",
+  const std::string_view kind = argc > 3 ? argv[3] : "";
+  const bool forest = kind == "forest";
+  // "a1:1.5", "a2:1.5": A1 or A2 at that density.
+  const bool a1 = kind.starts_with("a1:"), a2 = kind.starts_with("a2:");
+  const double density = a1 || a2 ? std::atof(argv[3] + 3) : 2.0;
+  const double ratio = argc > 3 && !forest && !a1 && !a2 ? std::atof(argv[3]) : 1.0;
+  if (worlds < 2 || !(ratio >= 1.0) || !(density > 1.0 && density <= 2.0)) {
+    std::fprintf(stderr,
+                 "usage: %s [worlds >= 2] [first seed] [noise field ratio > 1 | forest | "
+                 "a1:DENSITY | a2:DENSITY]\n",
                  argv[0]);
     return 2;
   }
@@ -173,6 +180,17 @@ int main(int argc, char** argv) {
       Print(measured, what.c_str(), worlds, first_seed, first.layers()->world(layer).min_distance(),
             "d", "d^2");
     }
+    return 0;
+  }
+  if (a1 || a2) {
+    Measured measured;
+    const auto algorithm = a1 ? scallop::WorldAlgorithm::kA1 : scallop::WorldAlgorithm::kA2;
+    const auto make_world = [algorithm, density](uint64_t seed) {
+      return *scallop::SeamProfileWorld(seed, algorithm, density);
+    };
+    if (!Measure(engine, worlds, first_seed, make_world, -1, measured)) return 1;
+    const std::string what = std::string(a1 ? "A1" : "A2") + " worlds of density " + (argv[3] + 3);
+    Print(measured, what.c_str(), worlds, first_seed, 1.0, "d", "d^2");
     return 0;
   }
   Measured measured;

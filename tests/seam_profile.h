@@ -41,6 +41,11 @@ inline StatusOr<World> SeamProfileWorld(uint64_t seed, double ratio) {
   return World::Create({.seed = seed, .radius_field = field});
 }
 
+// World `seed` of a profile of A1 or A2 at `density` (r' = density d), d = 1.
+inline StatusOr<World> SeamProfileWorld(uint64_t seed, WorldAlgorithm algorithm, double density) {
+  return World::Create({.seed = seed, .algorithm = algorithm, .density = density});
+}
+
 // The forest of docs/quality.md's "Layered worlds" with seed `seed`: trees 8, bushes 3, rocks 1.5,
 // default D.
 inline StatusOr<World> SeamProfileForest(uint64_t seed) {

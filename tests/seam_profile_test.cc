@@ -4,8 +4,8 @@
 // pinned below, give or take four standard errors of the difference. The pins record what version 4
 // leaves (the wall 6 to 7 d into the higher-ranked region, the sparse middle of a region whose
 // sides ran first, the seed cores): a version that removes those effects passes and re-pins them
-// tighter; one that makes any bin worse fails. A3 worlds, noise-field worlds and the forest's later
-// layers, each in its own regions. The worlds are fixed, so the test cannot flake.
+// tighter; one that makes any bin worse fails. A3, A1 and A2 worlds, noise-field worlds and the
+// forest's later layers, each in its own regions. The worlds are fixed, so the test cannot flake.
 #include "tests/seam_profile.h"
 
 #include <gtest/gtest.h>
@@ -26,7 +26,7 @@ namespace {
 
 // A bin may stray this many standard errors of its difference from the pin beyond it. The pin
 // is a measurement over as many worlds, so that difference has sqrt(2) times the bin's error: a
-// version as good in truth fails a bin with a chance of 3e-5, one of the test's 160 with 0.5%.
+// version as good in truth fails a bin with a chance of 3e-5, one of the test's 240 with 0.8%.
 constexpr double kMaxZ = 4.0;
 
 // Each bin's and ring's excess over the world's mean density in the current generator's worlds,
@@ -194,6 +194,38 @@ TEST(SeamProfileTest, FieldWorldsAreNoWorseThanVersion4) {
   const RingPins ring_pins = {30.1, 10.4, 7.2, 3.7, 2.0, 4.0, 2.2, 3.0};
   ExpectNoWorse(Measure(worlds), seam_pins, ring_pins);
   ExpectPlantedDefectsCaught(worlds, seam_pins, ring_pins);
+}
+
+// A1 and A2 worlds below density 2 (A1 at density 2 is dart throwing with a tapered band, flat
+// within 1.5%: PlaneA1DistributionTest): the paper's samplers in regions, whose wall is the
+// steepest. Fewer worlds: their regions cost ten times A3's.
+TEST(SeamProfileTest, A1AndA2WorldsAreNoWorseThanVersion4) {
+  struct Kind {
+    WorldAlgorithm algorithm;
+    const char* name;
+    SeamPins seam_pins;
+    RingPins ring_pins;
+  };
+  // A row for each side of the seam.
+  // clang-format off
+  const Kind kinds[] = {
+      {WorldAlgorithm::kA1, "A1 at density 1.5",
+       {-1.4, 2.6, -14.8, 14.1, -1.6, -1.5, 1.2, -0.8, -0.6, 0.9, -2.1, 0.3, 1.0, -2.1, 1.2, -1.7,
+        0.0, 0.5, -0.6, -2.5, 2.2, -1.6, 0.3, -0.8, -1.5, 0.2, 0.3, -8.3, 57.1, -54.4, 14.8, -2.1},
+       {-16.0, 1.4, 1.6, -2.5, -1.0, 0.2, -0.8, -1.0}},
+      {WorldAlgorithm::kA2, "A2 at density 1.5",
+       {0.5, 0.9, -7.6, 7.6, -1.7, 0.2, -0.6, 1.0, -0.3, -1.2, 1.1, -2.1, 0.8, -0.2, -1.9, 0.7,
+        0.0, -2.2, 1.5, -1.6, 1.4, -1.5, 0.1, -1.5, 1.5, -1.9, 2.3, -11.3, 58.3, -54.4, 11.6, 1.6},
+       {-16.1, 1.3, 1.8, 0.1, -1.7, -0.9, -0.2, -1.5}},
+  };
+  // clang-format on
+  for (const Kind& kind : kinds) {
+    SCOPED_TRACE(kind.name);
+    const Worlds worlds = MakeWorlds(
+        16, 0xa1000, [&](uint64_t seed) { return SeamProfileWorld(seed, kind.algorithm, 1.5); });
+    ExpectNoWorse(Measure(worlds), kind.seam_pins, kind.ring_pins);
+    ExpectPlantedDefectsCaught(worlds, kind.seam_pins, kind.ring_pins);
+  }
 }
 
 // The forest's later layers (each an A3 world of its own d with the earlier layers' disks cut
