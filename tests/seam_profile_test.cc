@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -43,8 +44,8 @@ struct Worlds {
 };
 
 // With `layer` >= 0, that layer of each (layered) world.
-template <typename MakeWorld>
-Worlds MakeWorlds(int count, uint64_t first_seed, MakeWorld make_world, int layer = -1) {
+Worlds MakeWorlds(int count, uint64_t first_seed,
+                  const std::function<StatusOr<World>(uint64_t)>& make_world, int layer) {
   PlaneEngine engine(PlaneEngineOptions{.threads = 1});
   Worlds made;
   for (int k = 0; k < count; ++k) {
@@ -66,11 +67,6 @@ Worlds MakeWorlds(int count, uint64_t first_seed, MakeWorld make_world, int laye
     made.points.push_back(points->positions);
   }
   return made;
-}
-
-Worlds MakeWorlds(int count, uint64_t first_seed, double ratio) {
-  return MakeWorlds(count, first_seed,
-                    [ratio](uint64_t seed) { return SeamProfileWorld(seed, ratio); });
 }
 
 // `keep` decides, from a point's place in the profile and its index in its world, whether a
@@ -167,96 +163,85 @@ void ExpectPlantedDefectsCaught(const Worlds& worlds, const SeamPins& seam_pins,
   EXPECT_TRUE(Flags(WorseThanPinned(core, seam_pins, ring_pins), "ring 2"));
 }
 
+// A kind of world held to its pins: `make_world` makes world `seed`, and with `layer` >= 0 its
+// points are that layer's.
+struct Kind {
+  const char* name;
+  std::function<StatusOr<World>(uint64_t)> make_world;
+  int layer;
+  SeamPins seam_pins;
+  RingPins ring_pins;
+};
+
+void ExpectHeldToPins(const Kind& kind, int worlds, uint64_t first_seed) {
+  SCOPED_TRACE(kind.name);
+  const Worlds made = MakeWorlds(worlds, first_seed, kind.make_world, kind.layer);
+  ExpectNoWorse(Measure(made), kind.seam_pins, kind.ring_pins);
+  ExpectPlantedDefectsCaught(made, kind.seam_pins, kind.ring_pins);
+}
+
+// The pins are each bin's and ring's excess, in percent, a row for each side of the seam.
+// clang-format off
+
 // A3 worlds of d = 1: bins of d / 2 from -8 d, rings of d.
 TEST(SeamProfileTest, A3WorldsAreNoWorseThanVersion4) {
-  const Worlds worlds = MakeWorlds(100, 0xa3000, 1.0);
-  // A row for each side of the seam.
-  // clang-format off
-  const SeamPins seam_pins = {
-      -1.2, 2.5, -6.4, 8.0, -0.2, 1.3, 0.4, 0.9, 0.4, 0.9, 0.2, 0.1, 0.6, 0.5, -0.0, 0.3,
-      -0.0, 0.2, 0.2, -0.1, 0.5, -0.1, 0.6, 0.1, 0.6, -0.3, 1.9, -4.3, 38.1, -38.3, 9.1, -16.8};
-  // clang-format on
-  const RingPins ring_pins = {14.4, 5.2, 3.6, 1.9, 2.2, 1.4, 1.6, 1.1};
-  ExpectNoWorse(Measure(worlds), seam_pins, ring_pins);
-  ExpectPlantedDefectsCaught(worlds, seam_pins, ring_pins);
+  ExpectHeldToPins(
+      {"A3", [](uint64_t seed) { return SeamProfileWorld(seed, 1.0); }, -1,
+       {-1.2, 2.5, -6.4, 8.0, -0.2, 1.3, 0.4, 0.9, 0.4, 0.9, 0.2, 0.1, 0.6, 0.5, -0.0, 0.3,
+        -0.0, 0.2, 0.2, -0.1, 0.5, -0.1, 0.6, 0.1, 0.6, -0.3, 1.9, -4.3, 38.1, -38.3, 9.1, -16.8},
+       {14.4, 5.2, 3.6, 1.9, 2.2, 1.4, 1.6, 1.1}},
+      100, 0xa3000);
 }
 
 // Noise-field worlds over [1, 2] (regions 6 r_max = 12): bins of 0.1875 r_max, rings of
 // 0.375 r_max.
 TEST(SeamProfileTest, FieldWorldsAreNoWorseThanVersion4) {
-  const Worlds worlds = MakeWorlds(100, 0xf000, 2.0);
-  // A row for each side of the seam.
-  // clang-format off
-  const SeamPins seam_pins = {
-      0.4, 3.7, 1.3, 0.6, -0.7, 2.1, 0.2, 2.4, -0.2, 1.8, 1.8, 0.5, 0.8, 1.8, -0.4, 0.7,
-      1.9, 2.2, -0.3, 1.9, 2.8, 2.4, 3.5, 3.9, 3.6, 0.8, -4.2, -0.8, -13.8, -5.9, -6.6, -8.4};
-  // clang-format on
-  const RingPins ring_pins = {30.1, 10.4, 7.2, 3.7, 2.0, 4.0, 2.2, 3.0};
-  ExpectNoWorse(Measure(worlds), seam_pins, ring_pins);
-  ExpectPlantedDefectsCaught(worlds, seam_pins, ring_pins);
+  ExpectHeldToPins(
+      {"noise field, ratio 2", [](uint64_t seed) { return SeamProfileWorld(seed, 2.0); }, -1,
+       {0.4, 3.7, 1.3, 0.6, -0.7, 2.1, 0.2, 2.4, -0.2, 1.8, 1.8, 0.5, 0.8, 1.8, -0.4, 0.7,
+        1.9, 2.2, -0.3, 1.9, 2.8, 2.4, 3.5, 3.9, 3.6, 0.8, -4.2, -0.8, -13.8, -5.9, -6.6, -8.4},
+       {30.1, 10.4, 7.2, 3.7, 2.0, 4.0, 2.2, 3.0}},
+      100, 0xf000);
 }
 
 // A1 and A2 worlds below density 2 (A1 at density 2 is dart throwing with a tapered band, flat
 // within 1.5%: PlaneA1DistributionTest): the paper's samplers in regions, whose wall is the
 // steepest. Fewer worlds: their regions cost ten times A3's.
 TEST(SeamProfileTest, A1AndA2WorldsAreNoWorseThanVersion4) {
-  struct Kind {
-    WorldAlgorithm algorithm;
-    const char* name;
-    SeamPins seam_pins;
-    RingPins ring_pins;
-  };
-  // A row for each side of the seam.
-  // clang-format off
-  const Kind kinds[] = {
-      {WorldAlgorithm::kA1, "A1 at density 1.5",
+  ExpectHeldToPins(
+      {"A1 at density 1.5",
+       [](uint64_t seed) { return SeamProfileWorld(seed, WorldAlgorithm::kA1, 1.5); }, -1,
        {-1.4, 2.6, -14.8, 14.1, -1.6, -1.5, 1.2, -0.8, -0.6, 0.9, -2.1, 0.3, 1.0, -2.1, 1.2, -1.7,
         0.0, 0.5, -0.6, -2.5, 2.2, -1.6, 0.3, -0.8, -1.5, 0.2, 0.3, -8.3, 57.1, -54.4, 14.8, -2.1},
        {-16.0, 1.4, 1.6, -2.5, -1.0, 0.2, -0.8, -1.0}},
-      {WorldAlgorithm::kA2, "A2 at density 1.5",
+      16, 0xa1000);
+  ExpectHeldToPins(
+      {"A2 at density 1.5",
+       [](uint64_t seed) { return SeamProfileWorld(seed, WorldAlgorithm::kA2, 1.5); }, -1,
        {0.5, 0.9, -7.6, 7.6, -1.7, 0.2, -0.6, 1.0, -0.3, -1.2, 1.1, -2.1, 0.8, -0.2, -1.9, 0.7,
         0.0, -2.2, 1.5, -1.6, 1.4, -1.5, 0.1, -1.5, 1.5, -1.9, 2.3, -11.3, 58.3, -54.4, 11.6, 1.6},
        {-16.1, 1.3, 1.8, 0.1, -1.7, -0.9, -0.2, -1.5}},
-  };
-  // clang-format on
-  for (const Kind& kind : kinds) {
-    SCOPED_TRACE(kind.name);
-    const Worlds worlds = MakeWorlds(
-        16, 0xa1000, [&](uint64_t seed) { return SeamProfileWorld(seed, kind.algorithm, 1.5); });
-    ExpectNoWorse(Measure(worlds), kind.seam_pins, kind.ring_pins);
-    ExpectPlantedDefectsCaught(worlds, kind.seam_pins, kind.ring_pins);
-  }
+      16, 0xa1000);
 }
 
 // The forest's later layers (each an A3 world of its own d with the earlier layers' disks cut
 // out; its trees are the plain A3 world of d = 8, held above): bushes (d = 3) and rocks (1.5).
 TEST(SeamProfileTest, ForestLayersAreNoWorseThanVersion4) {
-  struct Layer {
-    int number;
-    const char* name;
-    SeamPins seam_pins;
-    RingPins ring_pins;
-  };
-  // A row for each side of the seam.
-  // clang-format off
-  const Layer layers[] = {
-      {1, "bushes",
+  ExpectHeldToPins(
+      {"bushes", SeamProfileForest, 1,
        {-0.4, 1.6, -5.6, 7.1, 0.2, 1.6, -0.9, -1.0, 1.1, 1.9, 1.0, -0.3, 0.3, 1.2, 1.2, 0.6,
         0.5, 0.9, 0.6, -0.6, -0.6, 0.5, 2.2, 0.3, -1.2, -1.3, 1.5, -2.6, 34.0, -35.4, 7.2, -14.5},
        {6.1, 3.8, 3.1, 1.4, 2.1, 1.3, 0.7, 2.0}},
-      {2, "rocks",
+      60, 1);
+  ExpectHeldToPins(
+      {"rocks", SeamProfileForest, 2,
        {-1.0, 0.7, -3.7, 4.5, 1.2, 0.8, 0.9, 0.5, 0.3, -1.2, 2.0, 2.4, -1.6, 1.0, 0.8, 0.3,
         0.9, 0.5, 0.3, -0.4, 1.3, 0.4, -1.5, -0.2, 0.5, 0.4, 0.7, 0.6, 29.4, -31.3, 4.0, -13.8},
        {7.3, 5.2, 2.5, 1.3, 1.8, 1.5, 1.4, 1.2}},
-  };
-  // clang-format on
-  for (const Layer& layer : layers) {
-    SCOPED_TRACE(layer.name);
-    const Worlds worlds = MakeWorlds(60, 1, SeamProfileForest, layer.number);
-    ExpectNoWorse(Measure(worlds), layer.seam_pins, layer.ring_pins);
-    ExpectPlantedDefectsCaught(worlds, layer.seam_pins, layer.ring_pins);
-  }
+      60, 1);
 }
+
+// clang-format on
 
 }  // namespace
 }  // namespace scallop
