@@ -77,7 +77,6 @@ class SeamProfile {
 
   double side() const { return side_; }
   double block() const { return kBlockRegions * side_; }
-  int worlds() const { return worlds_; }
   double MeanDensity() const { return density_sum_ / worlds_; }
   // A bin's mean excess as a fraction of the mean density: -0.05 is 5% under.
   double RelativeExcess(const Bin& bin) const { return Mean(bin.excess) / MeanDensity(); }
