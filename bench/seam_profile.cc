@@ -19,7 +19,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -36,22 +35,22 @@ namespace {
 using scallop::SeamProfile;
 using scallop::Vec2;
 
-// Points (each counting its weight) in rings about each of some centres, summed.
+// Points (each counting its weight) in the profile's rings about each of some centres, summed.
 struct RingsAbout {
   std::vector<double> sums = std::vector<double>(SeamProfile::kRings);
   int centres = 0;
   void Add(const std::vector<Vec2>& points, const std::vector<double>& weight,
-           const std::vector<Vec2>& about, double width) {
+           const std::vector<Vec2>& about, const SeamProfile& profile) {
     for (const Vec2& c : about) {
       for (size_t i = 0; i < points.size(); ++i) {
-        const double ring = std::hypot(points[i].x - c.x, points[i].y - c.y) / width;
+        const double ring = std::hypot(points[i].x - c.x, points[i].y - c.y) / profile.RingFrom(1);
         if (ring < SeamProfile::kRings) sums[static_cast<int>(ring)] += weight[i];
       }
     }
     centres += static_cast<int>(about.size());
   }
-  double Density(int r, double width) const {
-    return sums[r] / (centres * std::numbers::pi * (2 * r + 1) * width * width);
+  double Density(int r, const SeamProfile& profile) const {
+    return sums[r] / (centres * profile.RingArea(r));
   }
 };
 
@@ -59,18 +58,15 @@ struct RingsAbout {
 // unless the seed fell in an earlier layer's disk and was dropped).
 std::vector<Vec2> Seeds(const std::vector<Vec2>& points, const SeamProfile& profile) {
   std::vector<Vec2> seeds;
-  for (int a = 0; a < SeamProfile::kBlockRegions / 2; ++a) {
-    for (int b = 0; b < SeamProfile::kBlockRegions / 2; ++b) {
-      const Vec2 centre{(2 * a + 0.5) * profile.side(), (2 * b + 0.5) * profile.side()};
-      Vec2 nearest = points.front();
-      for (const Vec2& p : points) {
-        if (std::hypot(p.x - centre.x, p.y - centre.y) <
-            std::hypot(nearest.x - centre.x, nearest.y - centre.y)) {
-          nearest = p;
-        }
+  for (const Vec2& centre : profile.RankZeroCentres()) {
+    Vec2 nearest = points.front();
+    for (const Vec2& p : points) {
+      if (std::hypot(p.x - centre.x, p.y - centre.y) <
+          std::hypot(nearest.x - centre.x, nearest.y - centre.y)) {
+        nearest = p;
       }
-      seeds.push_back(nearest);
     }
+    seeds.push_back(nearest);
   }
   return seeds;
 }
@@ -114,10 +110,9 @@ bool Measure(scallop::PlaneEngine& engine, int worlds, uint64_t first_seed, Make
     measured.profile->AddWorld(points->positions, own);
     std::vector<double> weight;
     for (const Vec2& p : points->positions) weight.push_back(SeamProfile::Weight(own, p));
-    const double width = profile.RingFrom(1);
-    measured.about_seeds.Add(points->positions, weight, Seeds(points->positions, profile), width);
+    measured.about_seeds.Add(points->positions, weight, Seeds(points->positions, profile), profile);
     measured.about_typical.Add(points->positions, weight,
-                               TypicalPoints(points->positions, profile, rng), width);
+                               TypicalPoints(points->positions, profile, rng), profile);
   }
   return true;
 }
@@ -145,7 +140,7 @@ void Print(const Measured& measured, const char* what, int worlds, uint64_t firs
                                     std::pair{"typical points", &measured.about_typical}}) {
     std::printf("\nabout %s (ring from, %s; density):", name, unit_name);
     for (int r = 0; r < SeamProfile::kRings; ++r) {
-      std::printf(" %.2f:%.3f", profile.RingFrom(r) / unit, rings->Density(r, profile.RingFrom(1)));
+      std::printf(" %.2f:%.3f", profile.RingFrom(r) / unit, rings->Density(r, profile));
     }
   }
   std::printf("\n");

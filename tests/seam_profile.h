@@ -89,6 +89,21 @@ class SeamProfile {
   // Where bin b and ring r start: signed distance to the seam, distance to the centre.
   double SeamBinFrom(int b) const { return (b - kSeamBins / 2) * side_ / kSeamBins; }
   double RingFrom(int r) const { return r * side_ / (2 * kRings); }
+  // The area of ring r about one centre.
+  double RingArea(int r) const {
+    return std::numbers::pi * (2 * r + 1) * RingFrom(1) * RingFrom(1);
+  }
+
+  // The centres of the block's rank-0 regions, (0, 0), (2, 0), ... in regions.
+  std::vector<Vec2> RankZeroCentres() const {
+    std::vector<Vec2> centres;
+    for (int a = 0; a < kBlockRegions / 2; ++a) {
+      for (int b = 0; b < kBlockRegions / 2; ++b) {
+        centres.push_back({(2 * a + 0.5) * side_, (2 * b + 0.5) * side_});
+      }
+    }
+    return centres;
+  }
 
   // A point's weight in `world` (the world the points are of, or a layer's world): its spacing
   // squared, R(p)^2 or d^2, so that densities are in points per spacing^2.
@@ -117,15 +132,12 @@ class SeamProfile {
     }
     const double seam_bin_area = 2 * (kBlockRegions - 1) * block() * side_ / kSeamBins;
     const double rank_zero_centres = (kBlockRegions / 2) * (kBlockRegions / 2);
-    const double ring_width = side_ / (2 * kRings);
     const double world_density = total / (block() * block());
     density_sum_ += world_density;
     ++worlds_;
     for (int b = 0; b < kSeamBins; ++b) Add(seam_[b], seam_sums[b] / seam_bin_area, world_density);
     for (int r = 0; r < kRings; ++r) {
-      const double area =
-          rank_zero_centres * std::numbers::pi * (2 * r + 1) * ring_width * ring_width;
-      Add(rings_[r], ring_sums[r] / area, world_density);
+      Add(rings_[r], ring_sums[r] / (rank_zero_centres * RingArea(r)), world_density);
     }
   }
 
